@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Installs what mrepair needs on Debian 12 (skips apt entirely when all is there).
+set -euo pipefail
+packages=(cmake g++ make libcgal-dev libeigen3-dev libtbb-dev libboost-dev
+          libgtest-dev libgmock-dev libbenchmark-dev libcgal-demo)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "installing: ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "need root (or sudo) to install: ${missing[*]}" >&2; exit 1; }
+  SUDO=sudo
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

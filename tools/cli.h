@@ -1,0 +1,247 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Shared machinery of the `mrepair` program: one argument parser, one report
+// writer, one progress printer, a registry of commands. Every command has the
+// shape `mrepair COMMAND INPUT [OUTPUT] [options] [--report FILE.json]`.
+#ifndef MREPAIR_TOOLS_CLI_H
+#define MREPAIR_TOOLS_CLI_H
+
+#include <mrepair/report.h>
+#include <mrepair/status.h>
+#include <mrepair/visitors.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace mrepair {
+namespace cli {
+
+/// a command-line mistake; `main` prints it as one line and exits 2.
+struct Usage_error : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/// one accepted option: `--name VALUE` when `takes_value`, else a flag `--name`.
+struct Option
+{
+  std::string name;
+  bool takes_value;
+  std::string help;
+};
+
+/// parsed command line of one command.
+class Arguments
+{
+public:
+  std::vector<std::string> positional;
+  std::map<std::string, std::string> values;  // options with a value
+  std::map<std::string, bool> flags;          // options without one
+
+  bool has(const std::string& name) const
+  {
+    return values.count(name) != 0 || flags.count(name) != 0;
+  }
+  std::string get(const std::string& name, const std::string& fallback = std::string()) const
+  {
+    auto it = values.find(name);
+    return it == values.end() ? fallback : it->second;
+  }
+  double get_double(const std::string& name, double fallback) const
+  {
+    auto it = values.find(name);
+    if (it == values.end()) return fallback;
+    char* end = nullptr;
+    double v = std::strtod(it->second.c_str(), &end);
+    if (end == it->second.c_str() || *end != '\0' || !std::isfinite(v))
+      throw Usage_error("--" + name + " expects a finite number, got '" + it->second + "'");
+    return v;
+  }
+  long long get_int(const std::string& name, long long fallback) const
+  {
+    auto it = values.find(name);
+    if (it == values.end()) return fallback;
+    char* end = nullptr;
+    long long v = std::strtoll(it->second.c_str(), &end, 10);
+    if (end == it->second.c_str() || *end != '\0')
+      throw Usage_error("--" + name + " expects an integer, got '" + it->second + "'");
+    return v;
+  }
+};
+
+/// parses `argv[first..argc)` against `options` (plus the common `--report`,
+/// `--json`, `--quiet`, `--help`); requires between `min_positional` and
+/// `max_positional` positional arguments.
+inline Arguments parse(int argc, char** argv, int first, std::vector<Option> options,
+                       std::size_t min_positional, std::size_t max_positional)
+{
+  options.push_back({"report", true, "write the report as JSON to FILE"});
+  options.push_back({"json", false, "print the report as JSON instead of a table"});
+  options.push_back({"quiet", false, "print no progress"});
+  options.push_back({"help", false, "print this help"});
+  Arguments a;
+  for (int i = first; i < argc; ++i) {
+    std::string s = argv[i];
+    if (s.size() > 2 && s.compare(0, 2, "--") == 0) {
+      std::string name = s.substr(2), value;
+      bool inline_value = false;
+      auto eq = name.find('=');
+      if (eq != std::string::npos) {
+        value = name.substr(eq + 1);
+        name = name.substr(0, eq);
+        inline_value = true;
+      }
+      const Option* opt = nullptr;
+      for (const Option& o : options)
+        if (o.name == name) opt = &o;
+      if (!opt) throw Usage_error("unknown option --" + name);
+      if (opt->takes_value) {
+        if (!inline_value) {
+          if (i + 1 >= argc) throw Usage_error("--" + name + " needs a value");
+          value = argv[++i];
+        }
+        a.values[name] = value;
+      } else {
+        if (inline_value) throw Usage_error("--" + name + " takes no value");
+        a.flags[name] = true;
+      }
+    } else {
+      a.positional.push_back(s);
+    }
+  }
+  if (a.has("help")) return a;
+  if (a.positional.size() < min_positional)
+    throw Usage_error("missing argument (see --help)");
+  if (a.positional.size() > max_positional)
+    throw Usage_error("unexpected argument '" + a.positional[max_positional] + "'");
+  return a;
+}
+
+/// one subcommand of `mrepair`.
+struct Command
+{
+  std::string name;
+  std::string synopsis;  // e.g. "INPUT OUTPUT [--epsilon E]"
+  std::string summary;   // one line
+  std::function<int(int argc, char** argv)> run;  // argv[0] is the command name
+};
+
+inline std::vector<Command>& registry()
+{
+  static std::vector<Command> commands;
+  return commands;
+}
+
+/// adds a command at static-initialisation time: `static Registrar r{{...}};`.
+struct Registrar
+{
+  explicit Registrar(Command c) { registry().push_back(std::move(c)); }
+};
+
+/// prints the help of a command: synopsis and options.
+inline void print_help(const Command& c, const std::vector<Option>& options)
+{
+  std::cout << "usage: mrepair " << c.name << " " << c.synopsis << "\n" << c.summary << "\n";
+  for (const Option& o : options)
+    std::cout << "  --" << o.name << (o.takes_value ? " VALUE" : "") << "\n      " << o.help
+              << "\n";
+  std::cout << "  --report FILE\n      write the report as JSON to FILE\n"
+               "  --json\n      print the report as JSON\n  --quiet\n      print no progress\n";
+}
+
+/// prints `report` (table or JSON) and writes it to `--report FILE` when given.
+/// Returns false when the file cannot be written.
+inline bool emit_report(const Arguments& a, const Report& report)
+{
+  if (a.has("json"))
+    std::cout << report.to_json() << "\n";
+  else
+    std::cout << report.to_text();
+  if (a.has("report")) {
+    std::ofstream out(a.get("report"));
+    out << report.to_json() << "\n";
+    if (!out) {
+      std::cerr << "mrepair: cannot write report '" << a.get("report") << "'\n";
+      return false;
+    }
+  }
+  return true;
+}
+
+/// exit code of a finished command from the status of its main call.
+inline int exit_code(Status s) { return succeeded(s) ? 0 : 1; }
+
+/// prints "mrepair: reason" and returns the exit code for bad input (1).
+inline int fail(const std::string& reason)
+{
+  std::cerr << "mrepair: " << reason << "\n";
+  return 1;
+}
+
+/// visitor that prints one line per finished phase with its time on stderr,
+/// and a percentage while a phase runs when stderr is a terminal.
+class Progress_printer : public Default_visitor
+{
+  using Clock = std::chrono::steady_clock;
+  struct Open
+  {
+    std::string name;
+    Clock::time_point start;
+  };
+  std::vector<Open> open_;
+  bool enabled_;
+  bool tty_;
+  int last_percent_ = -1;
+
+public:
+  explicit Progress_printer(bool enabled = true)
+    : enabled_(enabled), tty_(isatty(fileno(stderr)) != 0)
+  {}
+  void start_phase(const char* name)
+  {
+    open_.push_back({name, Clock::now()});
+    last_percent_ = -1;
+  }
+  void end_phase(const char* name)
+  {
+    if (open_.empty()) return;
+    double s = std::chrono::duration<double>(Clock::now() - open_.back().start).count();
+    open_.pop_back();
+    if (enabled_) {
+      if (tty_) std::cerr << "\r\033[K";
+      std::cerr << "  " << std::string(2 * open_.size(), ' ') << name << ": "
+                << std::to_string(s).substr(0, 6) << " s\n";
+    }
+  }
+  void progress(double f)
+  {
+    if (!enabled_ || !tty_ || open_.empty()) return;
+    int p = static_cast<int>(f * 100.0);
+    if (p == last_percent_) return;
+    last_percent_ = p;
+    std::cerr << "\r\033[K  " << open_.back().name << " " << p << "%" << std::flush;
+  }
+};
+
+/// wall-clock seconds of `f()`.
+template <typename F>
+double timed(F&& f)
+{
+  auto t0 = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+} // namespace cli
+} // namespace mrepair
+
+#endif // MREPAIR_TOOLS_CLI_H

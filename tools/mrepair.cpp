@@ -1,0 +1,52 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Entry point of the `mrepair` program: dispatches to the registered commands
+// (tools/cmd_*.cpp). Usage errors exit 2, bad input 1, success 0.
+#include "cli.h"
+
+#include <algorithm>
+#include <exception>
+#include <iostream>
+
+namespace {
+void print_usage()
+{
+  auto commands = mrepair::cli::registry();
+  std::sort(commands.begin(), commands.end(),
+            [](const auto& a, const auto& b) { return a.name < b.name; });
+  std::cout << "usage: mrepair COMMAND INPUT [OUTPUT] [options] [--report FILE.json]\n\ncommands:\n";
+  for (const auto& c : commands)
+    std::cout << "  " << c.name << std::string(c.name.size() < 12 ? 12 - c.name.size() : 1, ' ')
+              << c.summary << "\n";
+  std::cout << "\n'mrepair COMMAND --help' describes a command's options.\n";
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  if (argc < 2) {
+    print_usage();
+    return 2;
+  }
+  std::string name = argv[1];
+  if (name == "--help" || name == "-h" || name == "help") {
+    print_usage();
+    return 0;
+  }
+  for (const auto& c : mrepair::cli::registry()) {
+    if (c.name != name) continue;
+    try {
+      return c.run(argc - 1, argv + 1);
+    } catch (const mrepair::cli::Usage_error& e) {
+      std::cerr << "mrepair " << name << ": " << e.what() << "\n";
+      return 2;
+    } catch (const std::bad_alloc&) {
+      std::cerr << "mrepair " << name << ": out of memory\n";
+      return 1;
+    } catch (const std::exception& e) {
+      std::cerr << "mrepair " << name << ": internal error: " << e.what() << "\n";
+      return 3;
+    }
+  }
+  std::cerr << "mrepair: unknown command '" << name << "' (see mrepair --help)\n";
+  return 2;
+}
