@@ -1,0 +1,220 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Task "close-gaps": mrepair::close_gaps beside CGAL 5.5 PMP::stitch_borders
+// (exactly coincident borders only) and the experimental
+// PMP::experimental::snap_borders (vertex-vertex and vertex-edge snapping within
+// a tolerance) followed by stitch_borders, on the same input and tolerance.
+//
+// Reported for each: boundary edges before/after, seam edges closed (%),
+// boundary loops, T-junctions left (boundary vertices within the tolerance of
+// the inside of a boundary edge not incident to them), non-manifold vertices,
+// validity, and the largest vertex-to-surface distance between input and output
+// (both ways, an estimate of the Hausdorff distance).
+//
+// Environment: MREPAIR_GAP_TOLERANCE (relative to the bbox diagonal, default 5e-4).
+#include "bench.h"
+
+#include <mrepair/close_gaps.h>
+#include <mrepair/internal/close_gaps/boundary_grid.h>
+#include <mrepair/io.h>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/bbox.h>
+#include <CGAL/Polygon_mesh_processing/internal/Snapping/snap.h>
+#include <CGAL/Polygon_mesh_processing/manifoldness.h>
+#include <CGAL/Polygon_mesh_processing/stitch_borders.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/Real_timer.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/property_map.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <ctime>
+#include <stdexcept>
+#include <string>
+
+namespace {
+
+using K = CGAL::Epick;
+using Point = K::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+Mesh load(const std::string& path)
+{
+  Mesh m;
+  mrepair::Io_result r = mrepair::read_polygon_mesh(path, m);
+  if (!mrepair::succeeded(r.status) || faces(m).size() == 0)
+    throw std::runtime_error("cannot read " + path + ": " + r.message);
+  if (!CGAL::is_triangle_mesh(m)) PMP::triangulate_faces(m);
+  return m;
+}
+
+double diagonal(const Mesh& m)
+{
+  CGAL::Bbox_3 b = PMP::bbox(m);
+  return std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) +
+                   CGAL::square(b.zmax() - b.zmin()));
+}
+
+double tolerance(const Mesh& m)
+{
+  const char* s = std::getenv("MREPAIR_GAP_TOLERANCE");
+  return (s ? std::atof(s) : 5e-4) * diagonal(m);
+}
+
+// boundary vertices within `tol` of the inside of a non-incident boundary edge
+std::size_t t_junctions(const Mesh& m, double tol)
+{
+  using P3 = std::array<double, 3>;
+  auto p3 = [&](Mesh::Vertex_index v) {
+    const Point& p = m.point(v);
+    return P3{p.x(), p.y(), p.z()};
+  };
+  CGAL::Bbox_3 b = PMP::bbox(m);
+  mrepair::internal::Segment_grid grid;
+  std::vector<Mesh::Halfedge_index> border;
+  double len = 0;
+  for (auto h : halfedges(m))
+    if (is_border(h, m)) {
+      border.push_back(h);
+      len += std::sqrt(CGAL::squared_distance(m.point(source(h, m)), m.point(target(h, m))));
+    }
+  if (border.empty()) return 0;
+  grid.init({b.xmin(), b.ymin(), b.zmin()}, std::max(tol, len / border.size()));
+  for (std::size_t i = 0; i < border.size(); ++i)
+    grid.insert(i, p3(source(border[i], m)), p3(target(border[i], m)));
+  std::size_t n = 0;
+  for (auto h : border) {
+    auto v = target(h, m);
+    P3 p = p3(v);
+    bool found = false;
+    grid.query(p, tol, [&](const mrepair::internal::Segment_grid::Item& it) {
+      const std::uint64_t i = it.key;
+      if (found) return;
+      auto s = source(border[i], m), t = target(border[i], m);
+      if (s == v || t == v) return;
+      P3 a = p3(s), c = p3(t);
+      P3 ab{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+      double l2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+      if (l2 == 0) return;
+      double u = ((p[0] - a[0]) * ab[0] + (p[1] - a[1]) * ab[1] + (p[2] - a[2]) * ab[2]) / l2;
+      double l = std::sqrt(l2), eps = std::min(tol, l / 3) / l;
+      if (u <= eps || u >= 1 - eps) return;  // at an end: a gap vertex, not a T-junction
+      double d2 = 0;
+      for (int k = 0; k < 3; ++k) d2 += (p[k] - a[k] - u * ab[k]) * (p[k] - a[k] - u * ab[k]);
+      found = d2 <= tol * tol;
+    });
+    n += found;
+  }
+  return n;
+}
+
+double one_sided(const Mesh& a, const Mesh& b)
+{
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
+  Tree tree(faces(b).first, faces(b).second, b);
+  tree.accelerate_distance_queries();
+  double d = 0;
+  for (auto v : vertices(a)) d = std::max(d, tree.squared_distance(a.point(v)));
+  return std::sqrt(d);
+}
+
+void inspect(const Mesh& m, double tol, mrepair::Report& r)
+{
+  auto c = mrepair::internal::count_boundary(m);
+  r.add("faces", std::size_t(faces(m).size()));
+  r.add("boundary_edges", c.first);
+  r.add("boundary_loops", c.second);
+  r.add("t_junctions", t_junctions(m, tol));
+  std::vector<Mesh::Halfedge_index> nm;
+  PMP::non_manifold_vertices(m, std::back_inserter(nm));
+  r.add("non_manifold_vertices", nm.size());
+  r.add("valid", CGAL::is_valid_polygon_mesh(m));
+}
+
+void compare(const Mesh& in, Mesh& out, double tol, mrepair::bench::Measurement& m)
+{
+  out.collect_garbage();
+  inspect(in, tol, m.before);
+  inspect(out, tol, m.after);
+  std::size_t b0 = mrepair::internal::count_boundary(in).first;
+  std::size_t b1 = mrepair::internal::count_boundary(out).first;
+  m.after.add("seam_edges_closed_percent", b0 ? 100.0 * double(b0 - std::min(b0, b1)) / b0 : 100.0);
+  m.after.add("hausdorff_estimate", std::max(one_sided(in, out), one_sided(out, in)));
+  m.after.add("tolerance", tol);
+}
+
+mrepair::bench::Measurement run_mrepair(const std::string& path)
+{
+  mrepair::bench::Measurement m;
+  Mesh mesh = load(path);
+  const Mesh input = mesh;
+  const double tol = tolerance(mesh);
+  CGAL::Real_timer t;
+  std::clock_t c0 = std::clock();
+  t.start();
+  mrepair::Gap_closing_result res = mrepair::close_gaps(mesh, tol);
+  t.stop();
+  std::clock_t c1 = std::clock();
+  m.seconds = t.time();
+  m.result.add("cpu_seconds", double(c1 - c0) / CLOCKS_PER_SEC);  // all threads
+  m.status = mrepair::to_string(res.status);
+  res.to_report(m.result);
+  compare(input, mesh, tol, m);
+  return m;
+}
+
+mrepair::bench::Measurement run_stitch(const std::string& path)
+{
+  mrepair::bench::Measurement m;
+  Mesh mesh = load(path);
+  const Mesh input = mesh;
+  const double tol = tolerance(mesh);
+  CGAL::Real_timer t;
+  std::clock_t c0 = std::clock();
+  t.start();
+  std::size_t n = PMP::stitch_borders(mesh);
+  t.stop();
+  std::clock_t c1 = std::clock();
+  m.seconds = t.time();
+  m.result.add("cpu_seconds", double(c1 - c0) / CLOCKS_PER_SEC);  // all threads
+  m.result.add("stitched", n);
+  compare(input, mesh, tol, m);
+  return m;
+}
+
+mrepair::bench::Measurement run_snap(const std::string& path)
+{
+  mrepair::bench::Measurement m;
+  Mesh mesh = load(path);
+  const Mesh input = mesh;
+  const double tol = tolerance(mesh);
+  CGAL::Constant_property_map<Mesh::Vertex_index, double> tolerance_map(tol);
+  CGAL::Real_timer t;
+  std::clock_t c0 = std::clock();
+  t.start();
+  std::size_t snapped = PMP::experimental::snap_borders<CGAL::Parallel_if_available_tag>(mesh, tolerance_map);
+  std::size_t stitched = PMP::stitch_borders(mesh);
+  t.stop();
+  std::clock_t c1 = std::clock();
+  m.seconds = t.time();
+  m.result.add("cpu_seconds", double(c1 - c0) / CLOCKS_PER_SEC);  // all threads
+  m.result.add("snapped", snapped);
+  m.result.add("stitched", stitched);
+  compare(input, mesh, tol, m);
+  return m;
+}
+
+mrepair::bench::Task_registrar reg{
+    {"close-gaps",
+     "close seams within MREPAIR_GAP_TOLERANCE x diagonal (default 5e-4): mrepair::close_gaps vs "
+     "PMP::stitch_borders vs PMP::experimental::snap_borders + stitch_borders",
+     {{"mrepair::close_gaps", run_mrepair},
+      {"CGAL stitch_borders", run_stitch},
+      {"CGAL snap_borders+stitch", run_snap}}}};
+
+} // namespace

@@ -1,0 +1,230 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_INSPECT_H
+#define MREPAIR_INSPECT_H
+
+#include <mrepair/inspection_report.h>
+#include <mrepair/internal/inspect/analysis.h>
+#include <mrepair/internal/inspect/mesh_arrays.h>
+#include <mrepair/internal/inspect/surface_arrays.h>
+#include <mrepair/parameters.h>
+#include <mrepair/report.h>
+#include <mrepair/status.h>
+#include <mrepair/visitors.h>
+
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/tags.h>
+
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+/// \file inspect.h
+/// Counts the defects mrepair repairs and a few quality figures, on a polygon
+/// soup or on a polygon mesh. The definitions are in `doc/defects.md`.
+///
+/// Both functions flatten the input into index arrays, then run each count as
+/// a loop over vertices, faces or edges (parallel with TBB), in linear time
+/// except for the self-intersection test (a uniform grid of face boxes, then
+/// CGAL's exact predicates with the semantics of `PMP::self_intersections`,
+/// parallel) and the T-junction search (an AABB tree of boundary edges).
+
+// Share of triangle angles below this many degrees (quality figure, 30).
+MREPAIR_ADD_NAMED_PARAMETER(inspect_small_angle)
+
+namespace mrepair {
+
+namespace internal {
+
+// Reads the thresholds of a pack; returns false (and a message) when one is out of range.
+template <typename NamedParameters>
+bool read_inspect_thresholds(const NamedParameters& np, Inspect_thresholds& t, std::string& msg)
+{
+  t.spike_angle = get_or<double>(np, internal_np::spike_angle, 100.0);
+  t.zero_edge_factor = get_or<double>(np, internal_np::zero_edge_factor, 0.1);
+  t.skinny_edge_factor = get_or<double>(np, internal_np::skinny_edge_factor, 0.25);
+  t.skinny_angle = get_or<double>(np, internal_np::skinny_angle, 10.0);
+  t.small_angle = get_or<double>(np, internal_np::inspect_small_angle, 30.0);
+  t.max_hole_vertices = get_or<std::size_t>(np, internal_np::max_hole_vertices, 100);
+  t.min_component_faces = get_or<std::size_t>(np, internal_np::min_component_faces, 400);
+  t.t_junction_tolerance = get_or<double>(np, internal_np::t_junction_tolerance, -1.0);
+  auto bad = [&](const char* what) {
+    msg = std::string("parameter out of range: ") + what;
+    return false;
+  };
+  if (!(t.spike_angle >= 0 && t.spike_angle <= 180)) return bad("spike_angle (degrees, 0..180)");
+  if (!(t.zero_edge_factor >= 0) || !std::isfinite(t.zero_edge_factor)) return bad("zero_edge_factor");
+  if (!(t.skinny_edge_factor >= 0) || !std::isfinite(t.skinny_edge_factor))
+    return bad("skinny_edge_factor");
+  if (!(t.skinny_angle >= 0 && t.skinny_angle <= 180)) return bad("skinny_angle (degrees, 0..180)");
+  if (!(t.small_angle >= 0 && t.small_angle <= 180)) return bad("inspect_small_angle (degrees)");
+  if (std::isnan(t.t_junction_tolerance) || std::isinf(t.t_junction_tolerance))
+    return bad("t_junction_tolerance");
+  return true;
+}
+
+// Counts self-intersecting pairs when asked and possible: every face a
+// triangle, every vertex of a face finite.
+template <typename VisitorHandle>
+void count_self_intersections(const Surface_analysis& analysis, bool asked, VisitorHandle& visitor,
+                              Inspection_report& r)
+{
+  if (!asked || analysis.non_finite_referenced != 0 || r.faces == 0 || r.triangles != r.faces) return;
+  Phase_scope<VisitorHandle> phase(visitor, "inspect: self-intersections");
+  r.self_intersecting_pairs = analysis.self_intersecting_pairs();
+  r.self_intersections_counted = true;
+}
+
+inline void copy_thresholds(const Inspect_thresholds& t, Inspection_report& r)
+{
+  r.spike_angle = t.spike_angle;
+  r.zero_edge_factor = t.zero_edge_factor;
+  r.skinny_edge_factor = t.skinny_edge_factor;
+  r.skinny_angle = t.skinny_angle;
+  r.small_angle = t.small_angle;
+  r.max_hole_vertices = t.max_hole_vertices;
+  r.min_component_faces = t.min_component_faces;
+  r.t_junction_tolerance = t.t_junction_tolerance;
+}
+
+// Status of a filled report: the worst input problem found.
+inline void finish_status(Inspection_report& r, std::size_t non_finite_referenced)
+{
+  if (r.vertices == 0 || r.faces == 0) {
+    r.status = Status::empty_input;
+    r.message = r.vertices == 0 ? "no vertices" : "no usable faces";
+  } else if (r.invalid_polygons > 0) {
+    r.status = Status::invalid_index;
+    r.message = std::to_string(r.invalid_polygons) +
+                " polygons with an invalid index or fewer than 3 vertices were left out";
+  } else if (r.non_finite_vertices > 0) {
+    r.status = Status::non_finite_input;
+    r.message = std::to_string(r.non_finite_vertices) + " vertices have non-finite coordinates" +
+                (non_finite_referenced ? " (faces on them left out of the geometric figures)" : "");
+  }
+}
+
+} // namespace internal
+
+/// \ingroup mrepair_inspect
+/// counts the defects of a polygon soup and its quality figures (see
+/// `doc/defects.md`): validity of the polygons, non-finite, isolated and
+/// duplicate points, degenerate and duplicate polygons, non-manifold edges
+/// (more than two polygons) and vertices (several fans), edges used twice in
+/// the same direction (inconsistent orientation), boundary edges and loops,
+/// small holes, components, near-degenerate triangles, spiked vertices,
+/// T-junctions, closedness, angles, valences, edge lengths, area and volume.
+/// Self-intersecting pairs are counted as in `inspect()`, polygons sharing an
+/// edge being those that share an undirected edge.
+///
+/// \tparam PointRange random-access range of points with `x()`, `y()`, `z()`
+/// \tparam PolygonRange range of ranges of (signed or unsigned) integer indices
+/// \param np optional, each as `mrepair::parameters::NAME(value)`:
+///   - `spike_angle` (double, degrees, 100): dihedral angle above which an edge makes its ends spiked
+///   - `zero_edge_factor` (double, 0.1): zero edge: length < factor x global mean edge length
+///   - `skinny_edge_factor` (double, 0.25): skinny edge: length < factor x local mean edge length
+///   - `skinny_angle` (double, degrees, 10): opposite angle below which a skinny edge counts
+///   - `inspect_small_angle` (double, degrees, 30): `small_angle_share` counts angles below it
+///   - `max_hole_vertices` (size_t, 100): a boundary loop with fewer edges is a small hole
+///   - `min_component_faces` (size_t, 400): a component with fewer faces is small
+///   - `t_junction_tolerance` (double, model units; default, or when negative: 1e-4 x bounding-box diagonal)
+///   - `count_self_intersections` (bool, true): count self-intersecting pairs
+///     (only when every polygon is a triangle with finite corners)
+///   - `visitor` (`Default_visitor`): phases "inspect: topology", "inspect: geometry",
+///     "inspect: self-intersections"
+/// \return `Inspection_report`; `status` is `ok`, `empty_input`, `invalid_index`
+///   (bad polygons left out and counted), `non_finite_input` or `invalid_parameter`.
+template <typename PointRange, typename PolygonRange,
+          typename NamedParameters = CGAL::parameters::Default_named_parameters>
+Inspection_report inspect_polygon_soup(const PointRange& points, const PolygonRange& polygons,
+                                       const NamedParameters& np = CGAL::parameters::default_values())
+{
+  Inspection_report r;
+  r.from_mesh = false;
+  internal::Inspect_thresholds t;
+  if (!internal::read_inspect_thresholds(np, t, r.message)) {
+    r.status = Status::invalid_parameter;
+    return r;
+  }
+  internal::copy_thresholds(t, r);
+  internal::Visitor_handle<NamedParameters> visitor(np);
+  internal::Surface_arrays a;
+  {
+    internal::Phase_scope<decltype(visitor)> phase(visitor, "inspect: topology");
+    if (!internal::build_soup_arrays(points, polygons, a, r.invalid_polygons)) {
+      r.status = Status::invalid_parameter;
+      r.message = "soup too large (more than 2^32 - 1 points or corners)";
+      return r;
+    }
+  }
+  internal::Phase_scope<decltype(visitor)> phase(visitor, "inspect: geometry");
+  internal::Surface_analysis analysis(a, t, r);
+  analysis.run(nullptr);
+  const bool count_si = internal::get_or<bool>(np, internal_np::count_self_intersections, true);
+  internal::count_self_intersections(analysis, count_si, visitor, r);
+  internal::finish_status(r, analysis.non_finite_referenced);
+  return r;
+}
+
+/// \ingroup mrepair_inspect
+/// counts the defects of a polygon mesh and its quality figures (see
+/// `doc/defects.md`). Same counts as `inspect_polygon_soup()` on the mesh's
+/// faces, except that boundary loops are the border halfedge cycles.
+/// Self-intersecting pairs are the pairs `PMP::self_intersections()` reports,
+/// without the pairs (f, f) it uses for degenerate faces (counted in
+/// `degenerate_faces`), computed by mrepair's own parallel broad phase.
+/// In a halfedge mesh non-manifold edges, inconsistent orientations and
+/// same-orientation duplicate faces cannot occur: they are 0.
+///
+/// \tparam PolygonMesh model of `FaceListGraph` (`Surface_mesh`, `Polyhedron_3`, ...)
+/// \param np optional: the parameters of `inspect_polygon_soup()` and
+///   - `vertex_point_map` (default: the internal point map of `pmesh`)
+///   - `count_self_intersections` (bool, true): count self-intersecting pairs
+///     (needs a triangle mesh with finite coordinates, else not counted)
+/// \pre `CGAL::is_valid_polygon_mesh(pmesh)`
+/// \return `Inspection_report`; `status` is `ok`, `empty_input`, `non_finite_input` or `invalid_parameter`.
+template <typename PolygonMesh,
+          typename NamedParameters = CGAL::parameters::Default_named_parameters>
+Inspection_report inspect(const PolygonMesh& pmesh,
+                          const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  Inspection_report r;
+  r.from_mesh = true;
+  internal::Inspect_thresholds t;
+  if (!internal::read_inspect_thresholds(np, t, r.message)) {
+    r.status = Status::invalid_parameter;
+    return r;
+  }
+  internal::copy_thresholds(t, r);
+  const bool count_si = internal::get_or<bool>(np, internal_np::count_self_intersections, true);
+  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                              get_const_property_map(CGAL::vertex_point, pmesh));
+  internal::Visitor_handle<NamedParameters> visitor(np);
+  internal::Surface_arrays a;
+  std::vector<std::size_t> loops;
+  {
+    internal::Phase_scope<decltype(visitor)> phase(visitor, "inspect: topology");
+    if (!internal::build_mesh_arrays(pmesh, vpm, a, loops)) {
+      r.status = Status::invalid_parameter;
+      r.message = "mesh too large (more than 2^32 - 1 elements)";
+      return r;
+    }
+  }
+  std::size_t non_finite_referenced = 0;
+  {
+    internal::Phase_scope<decltype(visitor)> phase(visitor, "inspect: geometry");
+    internal::Surface_analysis analysis(a, t, r);
+    analysis.run(&loops);
+    non_finite_referenced = analysis.non_finite_referenced;
+    internal::count_self_intersections(analysis, count_si, visitor, r);
+  }
+  internal::finish_status(r, non_finite_referenced);
+  return r;
+}
+
+} // namespace mrepair
+
+#endif // MREPAIR_INSPECT_H

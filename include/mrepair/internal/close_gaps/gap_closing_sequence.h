@@ -1,0 +1,924 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_INTERNAL_CLOSE_GAPS_GAP_CLOSING_SEQUENCE_H
+#define MREPAIR_INTERNAL_CLOSE_GAPS_GAP_CLOSING_SEQUENCE_H
+
+#include <mrepair/internal/close_gaps/boundary_grid.h>
+#include <mrepair/parameters.h>
+#include <mrepair/report.h>
+#include <mrepair/status.h>
+
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/properties.h>
+#include <CGAL/number_utils.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <queue>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+#include <vector>
+
+// Algorithm-specific named parameters (see close_gaps.h for their meaning).
+MREPAIR_ADD_NAMED_PARAMETER(gap_lambda)                 // in [0,1], merged position λv+(1-λ)v'
+MREPAIR_ADD_NAMED_PARAMETER(gap_snap_distance)          // absolute snap distance to edge endpoints
+MREPAIR_ADD_NAMED_PARAMETER(gap_relative_tolerance)     // bool: tolerance x bbox diagonal
+MREPAIR_ADD_NAMED_PARAMETER(gap_vertex_selection)       // vertex property map of bool (region)
+MREPAIR_ADD_NAMED_PARAMETER(gap_face_selection)         // face property map of bool (region)
+MREPAIR_ADD_NAMED_PARAMETER(gap_split_pinched_vertices) // bool: close_gaps makes the output manifold
+MREPAIR_ADD_NAMED_PARAMETER(gap_max_operations)         // std::size_t cap on contractions
+
+namespace mrepair {
+
+/// \ingroup mrepair_gaps
+/// what `close_gaps()` or a `Gap_closing_sequence` did.
+struct Gap_closing_result
+{
+  Status status = Status::ok;
+  std::string message;
+  double tolerance = 0;                      ///< absolute distance limit used
+  std::size_t operations = 0;                ///< contractions applied (net, at the current position)
+  std::size_t vertex_vertex = 0;             ///< of which vertex-vertex contractions
+  std::size_t vertex_edge = 0;               ///< of which vertex-edge contractions
+  std::size_t rejected_flip = 0;             ///< pairs skipped: a face would flip
+  std::size_t rejected_degenerate = 0;       ///< pairs skipped: a face would get zero area
+  std::size_t rejected_non_manifold = 0;     ///< pairs skipped: an edge with >2 faces / broken fan
+  std::size_t rejected_failed = 0;           ///< pairs skipped: the halfedge update failed (rolled back)
+  std::size_t rejected_displacement = 0;     ///< pairs skipped: a vertex would move farther than the tolerance
+  std::size_t boundary_edges_before = 0;
+  std::size_t boundary_edges_after = 0;
+  std::size_t boundary_loops_before = 0;
+  std::size_t boundary_loops_after = 0;
+  std::size_t pinched_vertices = 0;          ///< boundary vertices with several fans (left in the mesh)
+  std::size_t pinched_vertices_split = 0;    ///< vertices created by splitting pinched vertices
+  double max_displacement = 0;               ///< largest distance a vertex moved from its input position
+  double final_distance = 0;                 ///< error level of the last applied contraction
+
+  void to_report(Report& r) const
+  {
+    r.add("status", to_string(status));
+    if (!message.empty()) r.add("message", message);
+    r.add("tolerance", tolerance);
+    r.add("operations", operations);
+    r.add("vertex_vertex", vertex_vertex);
+    r.add("vertex_edge", vertex_edge);
+    Report& rj = r.section("rejected");
+    rj.add("flip", rejected_flip);
+    rj.add("degenerate", rejected_degenerate);
+    rj.add("non_manifold", rejected_non_manifold);
+    rj.add("failed", rejected_failed);
+    rj.add("displacement", rejected_displacement);
+    r.add("boundary_edges_before", boundary_edges_before);
+    r.add("boundary_edges_after", boundary_edges_after);
+    r.add("boundary_loops_before", boundary_loops_before);
+    r.add("boundary_loops_after", boundary_loops_after);
+    r.add("pinched_vertices", pinched_vertices);
+    r.add("pinched_vertices_split", pinched_vertices_split);
+    r.add("max_displacement", max_displacement);
+    r.add("final_distance", final_distance);
+  }
+};
+
+namespace internal {
+// border halfedge count and border cycle count of a halfedge graph.
+template <class Mesh>
+std::pair<std::size_t, std::size_t> count_boundary(const Mesh& m)
+{
+  auto visited = get(CGAL::dynamic_halfedge_property_t<bool>(), m);
+  for (auto h : halfedges(m)) put(visited, h, false);
+  std::size_t edges = 0, loops = 0;
+  for (auto h : halfedges(m)) {
+    if (!is_border(h, m)) continue;
+    ++edges;
+    if (get(visited, h)) continue;
+    ++loops;
+    auto g = h;
+    do {
+      put(visited, g, true);
+      g = next(g, m);
+    } while (g != h);
+  }
+  return {edges, loops};
+}
+} // namespace internal
+
+/// \ingroup mrepair_gaps
+/// the progressive gap closing of Borodin, Novotni and Klein as an object that
+/// steps forward (contracting the nearest boundary vertex-vertex or
+/// vertex-edge pair) and backward (undoing contractions) on a triangle mesh
+/// with boundaries.
+///
+/// \code
+///   pairs  <- for each boundary vertex v: nearest boundary edge e not incident to v (grid)
+///             vertex-edge pair if the projection falls inside e (further than the snap
+///             distance from its ends), else vertex-vertex with the nearer end
+///   queue  <- pairs by distance
+///   forward: pop nearest; check fans, flips, zero areas; contract (v moves to λv+(1-λ)v');
+///            record removed/added faces and old positions; recompute the pairs of the
+///            vertices projected on every boundary edge that changed
+///   backward: replay the record in reverse (re-add the removed vertex, swap faces, restore positions)
+/// \endcode
+///
+/// Contractions are recorded as face edits (faces removed, faces added, at most
+/// one removed vertex, old and new positions), so "exactly" means: after
+/// backward steps the mesh has the same vertex set with bit-identical
+/// positions and the same set of faces as vertex triples (same orientation).
+/// On `Surface_mesh` the vertex indices are identical too (the vertex free list
+/// is last-in first-out); face and halfedge indices may be permuted.
+/// Vertex descriptors are stable on both types except for vertices that a
+/// contraction removed and its undo re-created (a new descriptor on `Polyhedron_3`).
+///
+/// Two patches first meet at a single vertex (a "pinched" vertex with two
+/// fans, valid as a halfedge graph); their boundary edges then coincide and are
+/// glued by the next contractions. Pinched vertices that remain can be split
+/// with `CGAL::Polygon_mesh_processing::duplicate_non_manifold_vertices()`
+/// (`close_gaps()` does so by default).
+///
+/// The mesh must not be modified by others while the sequence is in use.
+template <class TriangleMesh,
+          class VertexPointMap =
+              typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::type>
+class Gap_closing_sequence
+{
+  using GT = boost::graph_traits<TriangleMesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+  using Point = typename boost::property_traits<VertexPointMap>::value_type;
+  using Id = std::uint32_t;
+  using Tri = std::array<Id, 3>;
+  using P3 = std::array<double, 3>;
+  using Id_map = typename boost::property_map<TriangleMesh,
+                                              CGAL::dynamic_vertex_property_t<std::uint32_t>>::type;
+  static constexpr Id npos = Id(-1);
+
+  enum Kind : unsigned char { none = 0, vv = 1, ve = 2 };
+  enum Outcome { done, flip, degenerate, non_manifold, failed, displaced, stale };
+
+  struct Move
+  {
+    Id v;
+    Point from, to;
+  };
+  struct Op
+  {
+    Kind kind;
+    double level;            // running maximum of the pair distances
+    Id removed_vertex;       // npos for vertex-edge
+    Point removed_position;  // its position (undo re-creates it there)
+    std::vector<Tri> removed, added;
+    std::vector<Move> moves;
+  };
+  struct Pair
+  {
+    std::uint64_t edge = 0;
+    Id target = npos;  // vertex-vertex: the other vertex
+    Kind kind = none;
+    double dist = 0;
+  };
+  struct Entry
+  {
+    double d;
+    Id v;
+    std::uint32_t ver;
+    bool operator<(const Entry& o) const { return d > o.d || (d == o.d && v > o.v); }
+  };
+
+public:
+  /// prepares the pairs of `tm` for closing gaps up to `max_distance`.
+  /// \param np optional: `vertex_point_map` (of type `VertexPointMap`),
+  ///   `mrepair::parameters::gap_relative_tolerance(bool)` (false: `max_distance` is
+  ///   absolute; true: a fraction of the bounding-box diagonal),
+  ///   `gap_lambda(double)` (0.5), `gap_snap_distance(double)` (`max_distance`; a
+  ///   projection closer than min(snap, edge length / 3) to an edge end snaps to it),
+  ///   `gap_vertex_selection(map)` / `gap_face_selection(map)` (bool property maps:
+  ///   only boundary vertices of the region, and edges with both ends in it, are paired;
+  ///   a vertex is in a face region when one of its faces is selected; default all).
+  /// \pre `CGAL::is_valid_polygon_mesh(tm)` (checked in debug builds only: the check costs
+  ///   more than the closing). Bad data (no face, NaN/infinite coordinate, a non-triangle face,
+  ///   bad parameters) sets `status()` and makes every step a no-op.
+  template <class NamedParameters = CGAL::parameters::Default_named_parameters>
+  Gap_closing_sequence(TriangleMesh& tm, double max_distance,
+                       const NamedParameters& np = CGAL::parameters::default_values())
+    : tm_(tm),
+      vpm_(CGAL::parameters::choose_parameter(
+          CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+          get_property_map(CGAL::vertex_point, tm))),
+      idmap_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm))
+  {
+    namespace inp = mrepair::internal_np;
+    lambda_ = internal::get_or(np, inp::gap_lambda, 0.5);
+    bool relative = internal::get_or(np, inp::gap_relative_tolerance, false);
+    double snap = internal::get_or(np, inp::gap_snap_distance, -1.0);
+
+    if (!std::isfinite(max_distance) || max_distance < 0 || !(lambda_ >= 0 && lambda_ <= 1) ||
+        !std::isfinite(snap)) {
+      status_ = Status::invalid_parameter;
+      message_ = "tolerance must be finite and >= 0, gap_lambda in [0,1]";
+      return;
+    }
+    if (faces(tm).size() == 0) {
+      status_ = Status::empty_input;
+      message_ = "the mesh has no faces";
+      return;
+    }
+    double lo[3] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+                    std::numeric_limits<double>::max()};
+    double hi[3] = {-lo[0], -lo[1], -lo[2]};
+    // idmap_ is not initialised: 0 means "no id yet", which is also what an
+    // unset entry of a dynamic map reads on both Surface_mesh and Polyhedron_3.
+    for (vertex_descriptor v : vertices(tm)) {
+      const Point& p = get(vpm_, v);
+      double c[3] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+      for (int d = 0; d < 3; ++d) {
+        if (!std::isfinite(c[d])) {
+          status_ = Status::non_finite_input;
+          message_ = "a vertex coordinate is NaN or infinite";
+          return;
+        }
+        lo[d] = std::min(lo[d], c[d]);
+        hi[d] = std::max(hi[d], c[d]);
+      }
+    }
+#ifndef NDEBUG
+    const bool valid = CGAL::is_valid_polygon_mesh(tm);  // O(n) and slow: debug builds only
+#else
+    const bool valid = true;
+#endif
+    if (!valid || !CGAL::is_triangle_mesh(tm)) {
+      status_ = Status::invalid_mesh;
+      message_ = "the input is not a valid triangle mesh";
+      return;
+    }
+    double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                            (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    max_dist_ = relative ? max_distance * diag : max_distance;
+    snap_ = snap < 0 ? max_dist_ : snap;
+
+    // boundary vertices and edges get stable ids
+    std::vector<std::uint64_t> edges;
+    double total = 0;
+    for (halfedge_descriptor h : halfedges(tm)) {
+      if (!is_border(h, tm)) continue;
+      Id a = id_of(source(h, tm)), b = id_of(target(h, tm));
+      edges.push_back(key(a, b));
+      total += std::sqrt(sqdist(pos(a), pos(b)));
+    }
+    const std::size_t nb = vd_.size();
+    std::size_t pinched = 0;
+    boundary_stats(boundary_edges_before_, boundary_loops_before_, pinched);
+
+    // region
+    selected_.assign(vd_.size(), 1);
+    select_region(np);
+
+    double mean = edges.empty() ? 0 : total / edges.size();
+    double cell = std::max({max_dist_, mean, diag * 1e-6, 1e-300});
+    grid_.init({lo[0], lo[1], lo[2]}, cell);
+    for (std::uint64_t e : edges) grid_.insert(e, pos(ka(e)), pos(kb(e)));
+    vgrid_.init({lo[0], lo[1], lo[2]}, cell);
+    for (Id v = 0; v < nb; ++v) vgrid_.insert(v, pos(v), pos(v));
+    for (Id v = 0; v < nb; ++v) compute_pair(v);
+  }
+
+  /// `Status::ok`, or why the input was refused (then every step is a no-op).
+  Status status() const { return status_; }
+  /// the absolute distance limit of the sequence.
+  double max_distance() const { return max_dist_; }
+  /// number of contractions recorded (the farthest mesh reached).
+  std::size_t size() const { return ops_.size(); }
+  /// number of contractions applied to the mesh now.
+  std::size_t position() const { return pos_; }
+  /// error level of the mesh now: running maximum of the pair distances applied (0 at the input).
+  double current_distance() const { return pos_ == 0 ? 0.0 : ops_[pos_ - 1].level; }
+
+  /// applies up to `k` contractions (replaying recorded ones first); returns how many.
+  std::size_t forward(std::size_t k)
+  {
+    std::size_t n = 0;
+    while (n < k && step(max_dist_)) ++n;
+    return n;
+  }
+  /// applies contractions while the next pair is not farther than `d` (at most `max_distance()`).
+  std::size_t forward_to_distance(double d)
+  {
+    std::size_t n = 0;
+    d = std::min(d, max_dist_);
+    while (step(d)) ++n;
+    return n;
+  }
+  /// undoes up to `k` contractions; returns how many.
+  std::size_t backward(std::size_t k)
+  {
+    std::size_t n = 0;
+    while (n < k && pos_ > 0 && undo()) ++n;
+    return n;
+  }
+  /// undoes contractions until `current_distance() <= d`.
+  std::size_t backward_to_distance(double d)
+  {
+    std::size_t n = 0;
+    while (pos_ > 0 && ops_[pos_ - 1].level > d && undo()) ++n;
+    return n;
+  }
+
+  /// one forward step limited to pairs not farther than `limit`; false when none is left.
+  bool step(double limit)
+  {
+    if (status_ != Status::ok || broken_) return false;
+    if (pos_ < ops_.size()) {
+      if (ops_[pos_].level > limit) return false;
+      return redo();
+    }
+    while (!queue_.empty()) {
+      Entry top = queue_.top();
+      if (top.ver != ver_[top.v] || pair_[top.v].kind == none || !alive_[top.v]) {
+        queue_.pop();
+        continue;
+      }
+      if (top.d > limit) return false;
+      queue_.pop();
+      Outcome o = contract(top.v, top.d);
+      switch (o) {
+        case done: return true;
+        case flip: ++rejected_flip_; break;
+        case degenerate: ++rejected_degenerate_; break;
+        case non_manifold: ++rejected_non_manifold_; break;
+        case failed: ++rejected_failed_; break;
+        case displaced: ++rejected_displacement_; break;
+        case stale: compute_pair(top.v); break;
+      }
+    }
+    return false;
+  }
+
+  /// statistics of the mesh now (scans the mesh: O(size)).
+  Gap_closing_result result() const
+  {
+    Gap_closing_result r;
+    r.status = broken_ ? Status::invalid_mesh : status_;
+    r.message = message_;
+    r.tolerance = max_dist_;
+    if (status_ != Status::ok) return r;
+    r.operations = pos_;
+    for (std::size_t i = 0; i < pos_; ++i) (ops_[i].kind == vv ? r.vertex_vertex : r.vertex_edge)++;
+    r.rejected_flip = rejected_flip_;
+    r.rejected_degenerate = rejected_degenerate_;
+    r.rejected_non_manifold = rejected_non_manifold_;
+    r.rejected_failed = rejected_failed_;
+    r.rejected_displacement = rejected_displacement_;
+    r.boundary_edges_before = boundary_edges_before_;
+    r.boundary_loops_before = boundary_loops_before_;
+    boundary_stats(r.boundary_edges_after, r.boundary_loops_after, r.pinched_vertices);
+    for (Id i = 0; i < orig_.size(); ++i)
+      if (has_orig_[i] && alive_[i])
+        r.max_displacement = std::max(r.max_displacement, std::sqrt(sqdist(pos(i), p3(orig_[i]))));
+    r.final_distance = current_distance();
+    return r;
+  }
+
+private:
+  // ---- ids, positions ------------------------------------------------------
+  static std::uint64_t key(Id a, Id b) { return (std::uint64_t(a) << 32) | b; }
+  static Id ka(std::uint64_t k) { return Id(k >> 32); }
+  static Id kb(std::uint64_t k) { return Id(k & 0xffffffffu); }
+  static double sqdist(const P3& a, const P3& b)
+  {
+    return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
+  }
+  static P3 p3(const Point& p)
+  {
+    return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+  }
+  P3 pos(Id i) const { return p3(get(vpm_, vd_[i])); }
+
+  Id id_of(vertex_descriptor v)
+  {
+    std::uint32_t s = get(idmap_, v);
+    if (s != 0) return s - 1;
+    Id i = Id(vd_.size());
+    vd_.push_back(v);
+    put(idmap_, v, i + 1);
+    alive_.push_back(1);
+    selected_.push_back(0);  // vertices met later were not on the input boundary
+    pair_.emplace_back();
+    ver_.push_back(0);
+    has_orig_.push_back(0);
+    orig_.emplace_back();
+    return i;
+  }
+
+  template <class NP>
+  void select_region(const NP& np)
+  {
+    namespace inp = mrepair::internal_np;
+    if constexpr (!CGAL::parameters::is_default_parameter<NP, inp::gap_vertex_selection_t>::value) {
+      auto m = CGAL::parameters::get_parameter(np, inp::gap_vertex_selection);
+      for (Id i = 0; i < vd_.size(); ++i) selected_[i] = get(m, vd_[i]) ? 1 : 0;
+    } else if constexpr (!CGAL::parameters::is_default_parameter<NP, inp::gap_face_selection_t>::value) {
+      auto m = CGAL::parameters::get_parameter(np, inp::gap_face_selection);
+      for (Id i = 0; i < vd_.size(); ++i) {
+        selected_[i] = 0;
+        for (halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(vd_[i], tm_), tm_))
+          if (!is_border(h, tm_) && get(m, face(h, tm_))) selected_[i] = 1;
+      }
+    }
+  }
+
+  // halfedge from u to v, generic (Polyhedron's edge(u,v) has no orientation).
+  std::pair<halfedge_descriptor, bool> find_halfedge(Id u, Id v) const
+  {
+    halfedge_descriptor hv = halfedge(vd_[v], tm_);
+    if (hv == GT::null_halfedge()) return {hv, false};
+    for (halfedge_descriptor h : CGAL::halfedges_around_target(hv, tm_))
+      if (source(h, tm_) == vd_[u]) return {h, true};
+    return {hv, false};
+  }
+  bool is_border_edge(Id a, Id b) const
+  {
+    auto h = find_halfedge(a, b);
+    return h.second && is_border(h.first, tm_);
+  }
+  bool is_boundary_vertex(Id i) const
+  {
+    halfedge_descriptor hv = halfedge(vd_[i], tm_);
+    if (hv == GT::null_halfedge()) return false;
+    for (halfedge_descriptor h : CGAL::halfedges_around_target(hv, tm_))
+      if (is_border(h, tm_)) return true;
+    return false;
+  }
+  // border halfedges, border cycles and pinched vertices. Every border
+  // halfedge joins two vertices of the input boundary (contractions only glue
+  // or split boundary edges), so a scan of the vertices with ids suffices.
+  void boundary_stats(std::size_t& edges, std::size_t& loops, std::size_t& pinched) const
+  {
+    edges = loops = pinched = 0;
+    std::vector<halfedge_descriptor> border;
+    for (Id i = 0; i < vd_.size(); ++i) {
+      if (!alive_[i]) continue;
+      halfedge_descriptor hv = halfedge(vd_[i], tm_);
+      if (hv == GT::null_halfedge()) continue;
+      std::size_t k = 0;
+      for (halfedge_descriptor h : CGAL::halfedges_around_target(hv, tm_))
+        if (is_border(h, tm_)) {
+          border.push_back(h);
+          ++k;
+        }
+      if (k > 1) ++pinched;
+    }
+    edges = border.size();
+    std::unordered_set<std::uint64_t> seen;
+    auto hkey = [&](halfedge_descriptor h) {
+      return key(get(idmap_, source(h, tm_)), get(idmap_, target(h, tm_)));
+    };
+    for (halfedge_descriptor h : border) {
+      if (seen.count(hkey(h))) continue;
+      ++loops;
+      halfedge_descriptor g = h;
+      do {
+        seen.insert(hkey(g));
+        g = next(g, tm_);
+      } while (g != h);
+    }
+  }
+
+  // ---- pairing -------------------------------------------------------------
+  // finds the nearest boundary edge of `u` within max distance and queues it.
+  void compute_pair(Id u)
+  {
+    ++ver_[u];
+    Pair& pr = pair_[u];
+    pr.kind = none;
+    if (!alive_[u] || !selected_[u] || !is_boundary_vertex(u)) return;
+    const P3 p = pos(u);
+    double best = std::numeric_limits<double>::max(), best_t = 0;
+    std::uint64_t best_e = 0;
+    // distances on the registered copies; only a candidate that beats the best
+    // is checked against the mesh (alive, same geometry, still a border edge)
+    grid_.query(p, max_dist_, [&](const internal::Segment_grid::Item& it) {
+      const std::uint64_t e = it.key;
+      Id a = ka(e), b = kb(e);
+      if (a == u || b == u) return;
+      double t = 0, d = seg_dist(p, it.a, it.b, t);
+      if (d > max_dist_ || !(d < best || (d == best && e < best_e))) return;
+      if (!alive_[a] || !alive_[b] || !selected_[a] || !selected_[b]) return;
+      if (pos(a) != it.a || pos(b) != it.b) return;  // stale copy of a moved edge
+      if (!is_border_edge(a, b)) return;              // stale grid entry
+      best = d;
+      best_t = t;
+      best_e = e;
+    });
+    if (best > max_dist_) return;
+    Id a = ka(best_e), b = kb(best_e);
+    P3 pa = pos(a), pb = pos(b);
+    double len = std::sqrt(sqdist(pa, pb));
+    double eps = std::min(snap_, len / 3);
+    pr.edge = best_e;
+    if (best_t * len <= eps) {
+      pr.kind = vv;
+      pr.target = a;
+    } else if ((1 - best_t) * len <= eps) {
+      pr.kind = vv;
+      pr.target = b;
+    } else {
+      pr.kind = ve;
+      pr.target = npos;
+    }
+    // the error is the distance to the edge, also when the projection snaps to an end
+    pr.dist = best;
+    lists_[best_e].push_back(u);
+    queue_.push(Entry{pr.dist, u, ver_[u]});
+  }
+
+  static double seg_dist(const P3& p, const P3& a, const P3& b, double& t)
+  {
+    P3 ab{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double l2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+    t = l2 > 0 ? ((p[0] - a[0]) * ab[0] + (p[1] - a[1]) * ab[1] + (p[2] - a[2]) * ab[2]) / l2 : 0;
+    t = std::min(1.0, std::max(0.0, t));
+    P3 q{a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2]};
+    return std::sqrt(sqdist(p, q));
+  }
+
+  // ---- local checks --------------------------------------------------------
+  // rotates t so that it starts with c; false when c is not in t.
+  static bool rotate_to(const Tri& t, Id c, Id& a, Id& b)
+  {
+    for (int i = 0; i < 3; ++i)
+      if (t[i] == c) {
+        a = t[(i + 1) % 3];
+        b = t[(i + 2) % 3];
+        return true;
+      }
+    return false;
+  }
+  static bool same_face(const Tri& x, const Tri& y)
+  {
+    Id a, b;
+    return rotate_to(y, x[0], a, b) && a == x[1] && b == x[2];
+  }
+
+  // faces around c as (c, a, b) triples, current mesh.
+  void star(Id c, std::vector<Tri>& out)
+  {
+    out.clear();
+    halfedge_descriptor hv = halfedge(vd_[c], tm_);
+    if (hv == GT::null_halfedge()) return;
+    for (halfedge_descriptor h : CGAL::halfedges_around_target(hv, tm_))
+      if (!is_border(h, tm_)) out.push_back(Tri{c, id_of(target(next(h, tm_), tm_)), id_of(source(h, tm_))});
+  }
+
+  // the faces around c after removing `rem` and adding `add` must form either
+  // one closed fan (of at least 3 faces) or open fans only, each directed
+  // halfedge used once: what a halfedge graph can represent.
+  bool star_ok(Id c, const std::vector<Tri>& rem, const std::vector<Tri>& add)
+  {
+    link_.clear();
+    star(c, tmp_);
+    for (const Tri& t : tmp_) {
+      bool removed = false;
+      for (const Tri& r : rem) removed = removed || same_face(t, r);
+      if (!removed) link_.push_back({t[1], t[2]});
+    }
+    for (const Tri& t : add) {
+      Id a, b;
+      if (rotate_to(t, c, a, b)) link_.push_back({a, b});
+    }
+    const std::size_t n = link_.size();
+    if (n == 0) return false;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j)
+        if (link_[i].first == link_[j].first || link_[i].second == link_[j].second) return false;
+    auto succ = [&](Id x) -> std::size_t {
+      for (std::size_t i = 0; i < n; ++i)
+        if (link_[i].first == x) return i;
+      return n;
+    };
+    std::size_t covered = 0, starts = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      bool has_pred = false;
+      for (std::size_t j = 0; j < n; ++j) has_pred = has_pred || link_[j].second == link_[i].first;
+      if (has_pred) continue;
+      ++starts;
+      for (std::size_t k = i; k < n; k = succ(link_[k].second)) {
+        ++covered;
+        if (covered > n) return false;
+      }
+    }
+    if (starts > 0) return covered == n;  // open fans only
+    // closed: a single cycle through every face, not a back-to-back pair
+    std::size_t len = 0, k = 0;
+    do {
+      ++len;
+      k = succ(link_[k].second);
+    } while (k != 0 && k < n && len <= n);
+    return k == 0 && len == n && n >= 3;
+  }
+
+  static P3 normal(const P3& a, const P3& b, const P3& c)
+  {
+    P3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  }
+  static double dot(const P3& a, const P3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+  // geometry of one face before (ref, old positions) and after (t, new positions).
+  Outcome check_face(const Tri& t, const Tri& ref, Id moved, const P3& to) const
+  {
+    auto np = [&](Id i) { return i == moved ? to : pos(i); };
+    P3 a = np(t[0]), b = np(t[1]), c = np(t[2]);
+    P3 n1 = normal(a, b, c);
+    double l2 = std::max({sqdist(a, b), sqdist(b, c), sqdist(c, a)});
+    double area2 = dot(n1, n1);
+    if (!(area2 > 1e-24 * l2 * l2)) return degenerate;
+    P3 n0 = normal(pos(ref[0]), pos(ref[1]), pos(ref[2]));
+    double a0 = dot(n0, n0);
+    if (a0 > 1e-24 * l2 * l2 && dot(n0, n1) <= 0) return flip;
+    return done;
+  }
+
+  // ---- the contraction -----------------------------------------------------
+  Outcome contract(Id u, double dist)
+  {
+    const Pair pr = pair_[u];
+    Id a = ka(pr.edge), b = kb(pr.edge);
+    if (!alive_[a] || !alive_[b] || !is_border_edge(a, b) || !is_boundary_vertex(u)) return stale;
+    Op op;
+    op.kind = pr.kind;
+    op.removed_vertex = npos;
+    std::vector<Tri> ref;
+    Id moved;
+    P3 to;
+    const P3 pu = pos(u);
+    if (pr.kind == vv) {
+      Id w = pr.target;
+      if (!alive_[w] || w == u) return stale;
+      bool adjacent = find_halfedge(u, w).second || find_halfedge(w, u).second;
+      star(u, tmp2_);
+      for (const Tri& r : tmp2_) {
+        op.removed.push_back(r);
+        if (adjacent && (r[1] == w || r[2] == w)) continue;  // collapsed with the edge u-w
+        op.added.push_back(Tri{w, r[1], r[2]});
+        ref.push_back(r);
+      }
+      if (op.added.empty()) return non_manifold;
+      op.removed_vertex = u;
+      op.removed_position = get(vpm_, vd_[u]);
+      moved = w;
+      P3 pw = pos(w);
+      for (int d = 0; d < 3; ++d) to[d] = lambda_ * pu[d] + (1 - lambda_) * pw[d];
+    } else {
+      auto h = find_halfedge(a, b);
+      halfedge_descriptor o = opposite(h.first, tm_);
+      Id c = id_of(target(next(o, tm_), tm_));
+      if (c == u) return non_manifold;
+      op.removed.push_back(Tri{b, a, c});
+      op.added.push_back(Tri{b, u, c});
+      op.added.push_back(Tri{u, a, c});
+      ref.push_back(op.removed[0]);
+      ref.push_back(op.removed[0]);
+      moved = u;
+      double t = 0;
+      seg_dist(pu, pos(a), pos(b), t);
+      P3 pa = pos(a), pb = pos(b);
+      for (int d = 0; d < 3; ++d) to[d] = lambda_ * pu[d] + (1 - lambda_) * (pa[d] + t * (pb[d] - pa[d]));
+    }
+    // affected vertices: every vertex of the removed and added faces
+    affected_.clear();
+    for (const Tri& t : op.removed)
+      for (Id i : t) affected_.push_back(i);
+    for (const Tri& t : op.added)
+      for (Id i : t) affected_.push_back(i);
+    std::sort(affected_.begin(), affected_.end());
+    affected_.erase(std::unique(affected_.begin(), affected_.end()), affected_.end());
+    for (Id c : affected_)
+      if (c != op.removed_vertex && !star_ok(c, op.removed, op.added)) return non_manifold;
+    // geometry: the added faces against the faces they replace, the moved vertex's other faces against themselves
+    for (std::size_t i = 0; i < op.added.size(); ++i) {
+      Outcome o = check_face(op.added[i], ref[i], moved, to);
+      if (o != done) return o;
+    }
+    star(moved, tmp_);
+    for (const Tri& t : tmp_) {
+      bool removed = false;
+      for (const Tri& r : op.removed) removed = removed || same_face(t, r);
+      if (removed) continue;
+      Outcome o = check_face(t, t, moved, to);
+      if (o != done) return o;
+    }
+
+    // no vertex drifts farther than the tolerance from its input position
+    if (has_orig_[moved] && sqdist(to, p3(orig_[moved])) > max_dist_ * max_dist_) return displaced;
+    // boundary edges around the affected vertices before the edit
+    border_edges_around(affected_, before_);
+    Point to_point(to[0], to[1], to[2]);
+    op.moves.push_back(Move{moved, get(vpm_, vd_[moved]), to_point});
+    if (!has_orig_[moved]) {
+      has_orig_[moved] = 1;
+      orig_[moved] = op.moves.back().from;
+    }
+    if (!run_edit(op.removed, op.added, npos, op.removed_position, op.removed_vertex, op.moves, true))
+      return failed;
+    op.level = std::max(dist, current_distance());
+    ops_.push_back(std::move(op));
+    ++pos_;
+
+    // maintain the pairs (Algorithm 1, lines 8-14)
+    after_.clear();
+    border_edges_around(affected_, after_);
+    // keep only the new boundary edges and those that moved: the others are
+    // registered already and cannot be nearer to anyone than before
+    after_.erase(std::remove_if(after_.begin(), after_.end(),
+                                [&](std::uint64_t e) {
+                                  return ka(e) != moved && kb(e) != moved &&
+                                         std::binary_search(before_.begin(), before_.end(), e);
+                                }),
+                 after_.end());
+    for (std::uint64_t e : after_) grid_.insert(e, pos(ka(e)), pos(kb(e)));
+    recompute_.clear();
+    for (std::uint64_t e : before_) {
+      auto it = lists_.find(e);
+      if (it == lists_.end()) continue;
+      for (Id v : it->second)
+        if (pair_[v].kind != none && pair_[v].edge == e) recompute_.push_back(v);
+      lists_.erase(it);
+    }
+    for (Id c : affected_) recompute_.push_back(c);
+    // The paper recomputes only the vertices paired with a changed edge; a
+    // changed edge may also become the nearest one of other vertices (or the
+    // first one within reach), so look for those too.
+    vgrid_.insert(moved, pos(moved), pos(moved));
+    for (std::uint64_t e : after_) {
+      P3 pa = pos(ka(e)), pb = pos(kb(e));
+      vgrid_.query_box(pa, pb, max_dist_, [&](const internal::Segment_grid::Item& it) {
+        Id v = Id(it.key);
+        if (v == ka(e) || v == kb(e)) return;
+        double t = 0, d = seg_dist(it.a, pa, pb, t);  // a stale copy only costs a recompute
+        if (d > max_dist_ || !alive_[v] || !selected_[v]) return;
+        if (pair_[v].kind == none || d < pair_[v].dist) recompute_.push_back(v);
+      });
+    }
+    std::sort(recompute_.begin(), recompute_.end());
+    recompute_.erase(std::unique(recompute_.begin(), recompute_.end()), recompute_.end());
+    for (Id v : recompute_) compute_pair(v);
+    return done;
+  }
+
+  void border_edges_around(const std::vector<Id>& vs, std::vector<std::uint64_t>& out)
+  {
+    out.clear();
+    for (Id c : vs) {
+      if (!alive_[c]) continue;
+      halfedge_descriptor hv = halfedge(vd_[c], tm_);
+      if (hv == GT::null_halfedge()) continue;
+      for (halfedge_descriptor h : CGAL::halfedges_around_target(hv, tm_)) {
+        if (is_border(h, tm_)) out.push_back(key(id_of(source(h, tm_)), c));
+        if (is_border(opposite(h, tm_), tm_)) out.push_back(key(c, id_of(source(h, tm_))));
+      }
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  }
+
+  // ---- face edits (forward, undo and redo all go through here) -------------
+  // Euler::remove_face deletes vertices left without faces; re-create them at
+  // once (same index on Surface_mesh: the free list is LIFO) so ids stay valid.
+  void remove_face_keep_vertices(halfedge_descriptor h)
+  {
+    std::array<std::pair<Id, Point>, 3> lone;
+    int n = 0;
+    halfedge_descriptor g = h;
+    do {
+      halfedge_descriptor ng = next(g, tm_);
+      if (is_border(opposite(g, tm_), tm_) && is_border(opposite(ng, tm_), tm_) &&
+          next(opposite(ng, tm_), tm_) == opposite(g, tm_)) {
+        vertex_descriptor t = target(g, tm_);
+        lone[n++] = {Id(get(idmap_, t) - 1), get(vpm_, t)};
+      }
+      g = ng;
+    } while (g != h);
+    CGAL::Euler::remove_face(h, tm_);
+    for (int i = n - 1; i >= 0; --i) {
+      vertex_descriptor v = add_vertex(tm_);
+      put(vpm_, v, lone[i].second);
+      put(idmap_, v, lone[i].first + 1);
+      vd_[lone[i].first] = v;
+    }
+  }
+  bool add_tri(const Tri& t)
+  {
+    std::array<vertex_descriptor, 3> vs{{vd_[t[0]], vd_[t[1]], vd_[t[2]]}};
+    return CGAL::Euler::add_face(vs, tm_) != GT::null_face();
+  }
+  bool remove_tri(const Tri& t)
+  {
+    auto h = find_halfedge(t[0], t[1]);
+    if (!h.second || is_border(h.first, tm_) || target(next(h.first, tm_), tm_) != vd_[t[2]]) return false;
+    remove_face_keep_vertices(h.first);
+    return true;
+  }
+
+  // removes `rem`, adds `add`; re-creates vertex `readd` first (at `readd_pos`) and
+  // deletes `drop` last; then sets the positions of `moves` (to, or from on undo).
+  bool run_edit(const std::vector<Tri>& rem, const std::vector<Tri>& add, Id readd,
+                const Point& readd_pos, Id drop, const std::vector<Move>& moves, bool forward)
+  {
+    if (readd != npos) {
+      vertex_descriptor v = add_vertex(tm_);
+      put(vpm_, v, readd_pos);
+      put(idmap_, v, readd + 1);
+      vd_[readd] = v;
+      alive_[readd] = 1;
+    }
+    for (std::size_t i = 0; i < rem.size(); ++i)
+      if (!remove_tri(rem[i])) {
+        for (std::size_t j = i; j-- > 0;) add_tri(rem[j]);
+        if (readd != npos) {
+          remove_vertex(vd_[readd], tm_);
+          alive_[readd] = 0;
+        }
+        if (!forward) broken_ = true;
+        return false;
+      }
+    for (std::size_t i = 0; i < add.size(); ++i)
+      if (!add_tri(add[i])) {
+        bool ok = true;
+        for (std::size_t j = i; j-- > 0;) ok = remove_tri(add[j]) && ok;
+        for (const Tri& t : rem) ok = add_tri(t) && ok;
+        if (readd != npos) {
+          remove_vertex(vd_[readd], tm_);
+          alive_[readd] = 0;
+        }
+        if (!ok || !forward) broken_ = true;
+        return false;
+      }
+    if (drop != npos) {
+      if (halfedge(vd_[drop], tm_) == GT::null_halfedge()) remove_vertex(vd_[drop], tm_);
+      alive_[drop] = 0;
+    }
+    for (const Move& m : moves) put(vpm_, vd_[m.v], forward ? m.to : m.from);
+    return true;
+  }
+
+  bool redo()
+  {
+    const Op& op = ops_[pos_];
+    if (!run_edit(op.removed, op.added, npos, op.removed_position, op.removed_vertex, op.moves, true)) {
+      broken_ = true;
+      return false;
+    }
+    ++pos_;
+    return true;
+  }
+  bool undo()
+  {
+    const Op& op = ops_[pos_ - 1];
+    std::vector<Move> back(op.moves.rbegin(), op.moves.rend());
+    if (!run_edit(op.added, op.removed, op.removed_vertex, op.removed_position, npos, back, false))
+      return false;
+    --pos_;
+    return true;
+  }
+
+  // ---- state ---------------------------------------------------------------
+  TriangleMesh& tm_;
+  VertexPointMap vpm_;
+  Id_map idmap_;
+  Status status_ = Status::ok;
+  std::string message_;
+  bool broken_ = false;
+  double max_dist_ = 0, lambda_ = 0.5, snap_ = 0;
+
+  std::vector<vertex_descriptor> vd_;  // stable id -> current descriptor
+  std::vector<char> alive_, selected_, has_orig_;
+  std::vector<Pair> pair_;
+  std::vector<std::uint32_t> ver_;
+  std::vector<Point> orig_;
+
+  internal::Segment_grid grid_;   // boundary edges (keys: edge keys)
+  internal::Segment_grid vgrid_;  // boundary vertices (keys: ids)
+  std::unordered_map<std::uint64_t, std::vector<Id>> lists_;  // edge -> vertices paired with it
+  std::priority_queue<Entry> queue_;
+  std::vector<Op> ops_;
+  std::size_t pos_ = 0;
+
+  std::size_t rejected_flip_ = 0, rejected_degenerate_ = 0, rejected_non_manifold_ = 0,
+              rejected_failed_ = 0, rejected_displacement_ = 0;
+  std::size_t boundary_edges_before_ = 0, boundary_loops_before_ = 0;
+
+  // scratch
+  std::vector<std::uint64_t> before_, after_;
+  std::vector<Id> affected_, recompute_;
+  std::vector<Tri> tmp_, tmp2_;
+  std::vector<std::pair<Id, Id>> link_;
+};
+
+} // namespace mrepair
+
+#endif // MREPAIR_INTERNAL_CLOSE_GAPS_GAP_CLOSING_SEQUENCE_H

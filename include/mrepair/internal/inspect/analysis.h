@@ -1,0 +1,783 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_INTERNAL_INSPECT_ANALYSIS_H
+#define MREPAIR_INTERNAL_INSPECT_ANALYSIS_H
+
+#include <mrepair/inspection_report.h>
+#include <mrepair/internal/inspect/parallel.h>
+#include <mrepair/internal/inspect/self_intersections.h>
+#include <mrepair/internal/inspect/surface_arrays.h>
+
+#include <CGAL/AABB_segment_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#ifdef MREPAIR_INSPECT_VERBOSE
+#include <CGAL/Real_timer.h>
+#include <iostream>
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+namespace mrepair {
+namespace internal {
+
+// Thresholds of the inspection, defaults resolved (see inspect.h).
+struct Inspect_thresholds
+{
+  double spike_angle = 100.0;
+  double zero_edge_factor = 0.1;
+  double skinny_edge_factor = 0.25;
+  double skinny_angle = 10.0;
+  double small_angle = 30.0;
+  std::size_t max_hole_vertices = 100;
+  std::size_t min_component_faces = 400;
+  double t_junction_tolerance = -1;        // < 0: relative default
+  double t_junction_relative = 1e-4;       // x bounding-box diagonal
+};
+
+constexpr double inspect_rad_to_deg = 57.295779513082320876798154814105;
+
+struct Union_find
+{
+  std::vector<Inspect_index> parent;
+  explicit Union_find(std::size_t n) : parent(n)
+  {
+    for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<Inspect_index>(i);
+  }
+  Inspect_index find(Inspect_index x)
+  {
+    while (parent[x] != x) {
+      parent[x] = parent[parent[x]];
+      x = parent[x];
+    }
+    return x;
+  }
+  void unite(Inspect_index x, Inspect_index y)
+  {
+    x = find(x);
+    y = find(y);
+    if (x == y) return;
+    if (x < y) std::swap(x, y);
+    parent[x] = y;
+  }
+};
+
+// Does all the counting that soups and meshes share, on flattened arrays.
+// The caller supplies border cycle lengths for meshes (halfedge cycles);
+// for soups (`border_cycles == nullptr`) loops are the connected components
+// of the graph of boundary edges.
+class Surface_analysis
+{
+  using K = CGAL::Epick;
+  const Surface_arrays& a_;
+  const Inspect_thresholds& t_;
+  Inspection_report& r_;
+
+  std::vector<double> normal_;         // 3 per face, zero when not computable
+  std::vector<unsigned char> face_ok_; // all vertices finite
+  std::vector<unsigned char> repeated_;
+  std::vector<unsigned char> collinear_;
+  std::vector<double> corner_angle_;   // degrees, triangles only (else NaN)
+  std::vector<double> edge_len_;       // NaN when an endpoint is not finite
+  std::vector<double> vertex_mean_len_;
+  std::vector<Inspect_index> valence_;
+  std::vector<unsigned char> not_interior_, boundary_vertex_, spiked_, referenced_;
+  double bbox_diag_ = 0;
+
+public:
+  std::size_t non_finite_referenced = 0;
+
+  Surface_analysis(const Surface_arrays& a, const Inspect_thresholds& t, Inspection_report& r)
+    : a_(a), t_(t), r_(r)
+  {}
+
+  void run(const std::vector<std::size_t>* border_cycles)
+  {
+    r_.vertices = a_.num_vertices;
+    r_.faces = a_.num_faces();
+    r_.edges = a_.num_edges();
+#ifdef MREPAIR_INSPECT_VERBOSE
+    CGAL::Real_timer timer;
+    timer.start();
+#define MREPAIR_INSPECT_STEP(f)                                                   \
+  f;                                                                              \
+  std::cerr << "  " #f ": " << timer.time() << " s\n";                          \
+  timer.reset();
+#else
+#define MREPAIR_INSPECT_STEP(f) f;
+#endif
+    MREPAIR_INSPECT_STEP(vertex_pass())
+    MREPAIR_INSPECT_STEP(duplicate_points())
+    MREPAIR_INSPECT_STEP(face_pass())
+    MREPAIR_INSPECT_STEP(duplicate_faces())
+    MREPAIR_INSPECT_STEP(edge_pass())
+    MREPAIR_INSPECT_STEP(vertex_accumulation())
+    MREPAIR_INSPECT_STEP(near_degenerate())
+    MREPAIR_INSPECT_STEP(components())
+    MREPAIR_INSPECT_STEP(non_manifold_vertices())
+    if (border_cycles) {
+      MREPAIR_INSPECT_STEP(count_loops(*border_cycles))
+    } else {
+      MREPAIR_INSPECT_STEP(soup_loops())
+    }
+    MREPAIR_INSPECT_STEP(t_junctions())
+    MREPAIR_INSPECT_STEP(valence_and_closedness())
+#undef MREPAIR_INSPECT_STEP
+  }
+
+  // Self-intersecting pairs of distinct triangles (see self_intersections.h);
+  // run after `run()`, only when every face is a triangle with finite corners.
+  std::size_t self_intersecting_pairs() const
+  {
+    const std::size_t nf = a_.num_faces();
+    std::vector<unsigned char> eligible(nf);
+    for (std::size_t f = 0; f < nf; ++f)
+      eligible[f] = a_.degree(f) == 3 && face_ok_[f] && !repeated_[f] && !collinear_[f];
+    return Self_intersection_counter(a_).count(eligible);
+  }
+
+private:
+  // ---- vertices ---------------------------------------------------------------
+  void vertex_pass()
+  {
+    const std::size_t nv = a_.num_vertices;
+    referenced_.assign(nv, 0);
+    for (Inspect_index v : a_.corner_v) referenced_[v] = 1;
+    struct Acc
+    {
+      std::size_t non_finite = 0, non_finite_ref = 0, isolated = 0;
+      double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                      std::numeric_limits<double>::infinity()};
+      double hi[3] = {-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                      -std::numeric_limits<double>::infinity()};
+    };
+    auto acc = chunked<Acc>(nv, [&](std::size_t b, std::size_t e, Acc& s) {
+      for (std::size_t v = b; v < e; ++v) {
+        if (!referenced_[v]) ++s.isolated;
+        if (!a_.finite[v]) {
+          ++s.non_finite;
+          if (referenced_[v]) ++s.non_finite_ref;
+          continue;
+        }
+        const double* p = a_.point(v);
+        for (int i = 0; i < 3; ++i) {
+          s.lo[i] = std::min(s.lo[i], p[i]);
+          s.hi[i] = std::max(s.hi[i], p[i]);
+        }
+      }
+    });
+    Acc tot;
+    for (const Acc& s : acc) {
+      tot.non_finite += s.non_finite;
+      tot.non_finite_ref += s.non_finite_ref;
+      tot.isolated += s.isolated;
+      for (int i = 0; i < 3; ++i) {
+        tot.lo[i] = std::min(tot.lo[i], s.lo[i]);
+        tot.hi[i] = std::max(tot.hi[i], s.hi[i]);
+      }
+    }
+    r_.non_finite_vertices = tot.non_finite;
+    r_.isolated_vertices = tot.isolated;
+    non_finite_referenced = tot.non_finite_ref;
+    double d2 = 0;
+    if (tot.lo[0] <= tot.hi[0])
+      for (int i = 0; i < 3; ++i) d2 += (tot.hi[i] - tot.lo[i]) * (tot.hi[i] - tot.lo[i]);
+    bbox_diag_ = std::sqrt(d2);
+  }
+
+  static std::uint64_t bits(double x)
+  {
+    x += 0.0; // -0.0 and +0.0 are the same location
+    std::uint64_t u;
+    std::memcpy(&u, &x, sizeof u);
+    return u;
+  }
+
+  // Exactly coincident finite points: hash buckets (counting sort), then an
+  // exact sort inside each bucket. Linear on average.
+  void duplicate_points()
+  {
+    const std::size_t nv = a_.num_vertices;
+    if (nv == 0) return;
+    std::vector<Inspect_index> h(nv);
+    parallel_for_index(nv, 16384, [&](std::size_t v) {
+      if (!a_.finite[v]) {
+        h[v] = inspect_npos;
+        return;
+      }
+      const double* p = a_.point(v);
+      std::uint64_t k = bits(p[0]) * 0x9E3779B97F4A7C15ull;
+      k = (k ^ (k >> 29) ^ bits(p[1])) * 0xBF58476D1CE4E5B9ull;
+      k = (k ^ (k >> 31) ^ bits(p[2])) * 0x94D049BB133111EBull;
+      k ^= k >> 32;
+      h[v] = static_cast<Inspect_index>(k % nv);
+    });
+    std::vector<Inspect_index> off(nv + 1, 0);
+    for (std::size_t v = 0; v < nv; ++v)
+      if (h[v] != inspect_npos) ++off[h[v]];
+    Inspect_index total = exclusive_scan_in_place(off);
+    off[nv] = total;
+    std::vector<Inspect_index> order(total);
+    {
+      std::vector<Inspect_index> pos(off.begin(), off.end() - 1);
+      for (std::size_t v = 0; v < nv; ++v)
+        if (h[v] != inspect_npos) order[pos[h[v]]++] = static_cast<Inspect_index>(v);
+    }
+    auto less = [&](Inspect_index x, Inspect_index y) {
+      const double *p = a_.point(x), *q = a_.point(y);
+      if (p[0] != q[0]) return p[0] < q[0];
+      if (p[1] != q[1]) return p[1] < q[1];
+      return p[2] < q[2];
+    };
+    auto acc = chunked<std::size_t>(nv, [&](std::size_t b, std::size_t e, std::size_t& dup) {
+      for (std::size_t k = b; k < e; ++k) {
+        auto first = order.begin() + off[k], last = order.begin() + off[k + 1];
+        if (last - first < 2) continue;
+        std::sort(first, last, less);
+        for (auto it = first + 1; it != last; ++it)
+          if (!less(*(it - 1), *it)) ++dup;
+      }
+    });
+    for (std::size_t d : acc) r_.duplicate_points += d;
+  }
+
+  // ---- faces ------------------------------------------------------------------
+  static bool all_collinear(const std::vector<K::Point_3>& p)
+  {
+    std::size_t j = 1;
+    while (j < p.size() && p[j] == p[0]) ++j;
+    if (j == p.size()) return true;
+    for (std::size_t i = j + 1; i < p.size(); ++i)
+      if (!CGAL::collinear(p[0], p[j], p[i])) return false;
+    return true;
+  }
+
+  void face_pass()
+  {
+    const std::size_t nf = a_.num_faces();
+    normal_.assign(3 * nf, 0.0);
+    face_ok_.assign(nf, 0);
+    repeated_.assign(nf, 0);
+    collinear_.assign(nf, 0);
+    corner_angle_.assign(a_.corner_v.size(), std::numeric_limits<double>::quiet_NaN());
+    struct Acc
+    {
+      std::size_t triangles = 0, repeated = 0, collinear = 0, angles = 0, small = 0;
+      double min_angle = std::numeric_limits<double>::infinity(), area = 0, volume = 0;
+    };
+    const double small = t_.small_angle;
+    auto acc = chunked<Acc>(nf, [&](std::size_t b, std::size_t e, Acc& s) {
+      std::vector<K::Point_3> poly;
+      for (std::size_t f = b; f < e; ++f) {
+        const std::size_t k = a_.degree(f), c0 = a_.face_off[f];
+        const Inspect_index* v = &a_.corner_v[c0];
+        if (k == 3) ++s.triangles;
+        repeated_[f] = a_.face_skip[f] || has_repeated_index(v, k);
+        if (repeated_[f]) ++s.repeated;
+        bool ok = true;
+        for (std::size_t i = 0; i < k; ++i) ok = ok && a_.finite[v[i]];
+        face_ok_[f] = ok;
+        if (!ok) continue;
+        double* n = &normal_[3 * f];
+        if (k == 3) {
+          const double *p = a_.point(v[0]), *q = a_.point(v[1]), *w = a_.point(v[2]);
+          const double u0[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+          const double u1[3] = {w[0] - q[0], w[1] - q[1], w[2] - q[2]};
+          const double u2[3] = {p[0] - w[0], p[1] - w[1], p[2] - w[2]};
+          n[0] = u0[1] * u1[2] - u0[2] * u1[1];
+          n[1] = u0[2] * u1[0] - u0[0] * u1[2];
+          n[2] = u0[0] * u1[1] - u0[1] * u1[0];
+          const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+          s.area += 0.5 * len;
+          // corner angle at a vertex: between the edge leaving it and the
+          // reversed edge entering it; |cross| is 2 x area at every corner.
+          const double d0 = -(u0[0] * u2[0] + u0[1] * u2[1] + u0[2] * u2[2]);
+          const double d1 = -(u1[0] * u0[0] + u1[1] * u0[1] + u1[2] * u0[2]);
+          const double d2 = -(u2[0] * u1[0] + u2[1] * u1[1] + u2[2] * u1[2]);
+          const double ang[3] = {std::atan2(len, d0) * inspect_rad_to_deg,
+                                 std::atan2(len, d1) * inspect_rad_to_deg,
+                                 std::atan2(len, d2) * inspect_rad_to_deg};
+          for (int i = 0; i < 3; ++i) {
+            corner_angle_[c0 + i] = ang[i];
+            s.min_angle = std::min(s.min_angle, ang[i]);
+            if (ang[i] < small) ++s.small;
+          }
+          s.angles += 3;
+          s.volume += (p[0] * (q[1] * w[2] - q[2] * w[1]) + p[1] * (q[2] * w[0] - q[0] * w[2]) +
+                       p[2] * (q[0] * w[1] - q[1] * w[0])) / 6.0;
+          if (!repeated_[f] &&
+              CGAL::collinear(K::Point_3(p[0], p[1], p[2]), K::Point_3(q[0], q[1], q[2]),
+                              K::Point_3(w[0], w[1], w[2]))) {
+            ++s.collinear;
+            collinear_[f] = 1;
+          }
+        } else {
+          // Newell normal: twice the vector area of a (possibly non-planar) polygon
+          const double* p0 = a_.point(v[0]);
+          for (std::size_t i = 0; i < k; ++i) {
+            const double *p = a_.point(v[i]), *q = a_.point(v[(i + 1) % k]);
+            n[0] += (p[1] - q[1]) * (p[2] + q[2]);
+            n[1] += (p[2] - q[2]) * (p[0] + q[0]);
+            n[2] += (p[0] - q[0]) * (p[1] + q[1]);
+            if (i >= 1 && i + 1 < k)
+              s.volume += (p0[0] * (p[1] * q[2] - p[2] * q[1]) + p0[1] * (p[2] * q[0] - p[0] * q[2]) +
+                           p0[2] * (p[0] * q[1] - p[1] * q[0])) / 6.0;
+          }
+          s.area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+          if (!repeated_[f]) {
+            poly.clear();
+            for (std::size_t i = 0; i < k; ++i) {
+              const double* p = a_.point(v[i]);
+              poly.emplace_back(p[0], p[1], p[2]);
+            }
+            if (all_collinear(poly)) {
+              ++s.collinear;
+              collinear_[f] = 1;
+            }
+          }
+        }
+      }
+    });
+    Acc tot;
+    for (const Acc& s : acc) {
+      tot.triangles += s.triangles;
+      tot.repeated += s.repeated;
+      tot.collinear += s.collinear;
+      tot.angles += s.angles;
+      tot.small += s.small;
+      tot.min_angle = std::min(tot.min_angle, s.min_angle);
+      tot.area += s.area;
+      tot.volume += s.volume;
+    }
+    r_.triangles = tot.triangles;
+    r_.repeated_index_faces = tot.repeated;
+    r_.degenerate_faces = tot.repeated + tot.collinear;
+    if (tot.angles > 0) {
+      r_.min_angle = tot.min_angle;
+      r_.small_angle_share = double(tot.small) / double(tot.angles);
+    }
+    r_.area = tot.area;
+    volume_sum_ = tot.volume;
+  }
+  double volume_sum_ = 0;
+
+  // Faces with the same vertex set as an earlier face: faces bucketed by their
+  // smallest vertex, each bucket sorted by the sorted vertex list.
+  void duplicate_faces()
+  {
+    const std::size_t nf = a_.num_faces(), nv = a_.num_vertices;
+    if (nf < 2) return;
+    std::vector<Inspect_index> sv(a_.corner_v);
+    parallel_for_index(nf, 4096, [&](std::size_t f) {
+      std::sort(sv.begin() + a_.face_off[f], sv.begin() + a_.face_off[f + 1]);
+    });
+    std::vector<Inspect_index> off(nv + 1, 0);
+    for (std::size_t f = 0; f < nf; ++f)
+      if (!repeated_[f]) ++off[sv[a_.face_off[f]]];
+    Inspect_index total = exclusive_scan_in_place(off);
+    off[nv] = total;
+    std::vector<Inspect_index> order(total);
+    {
+      std::vector<Inspect_index> pos(off.begin(), off.end() - 1);
+      for (std::size_t f = 0; f < nf; ++f)
+        if (!repeated_[f]) order[pos[sv[a_.face_off[f]]]++] = static_cast<Inspect_index>(f);
+    }
+    auto cmp = [&](Inspect_index x, Inspect_index y) -> int {
+      std::size_t kx = a_.degree(x), ky = a_.degree(y);
+      if (kx != ky) return kx < ky ? -1 : 1;
+      for (std::size_t i = 0; i < kx; ++i) {
+        Inspect_index p = sv[a_.face_off[x] + i], q = sv[a_.face_off[y] + i];
+        if (p != q) return p < q ? -1 : 1;
+      }
+      return 0;
+    };
+    // cyclic orders of two faces with the same vertex set: +1 same, -1 reversed, 0 other
+    auto orientation = [&](Inspect_index x, Inspect_index y) -> int {
+      const std::size_t k = a_.degree(x);
+      const Inspect_index *vx = &a_.corner_v[a_.face_off[x]], *vy = &a_.corner_v[a_.face_off[y]];
+      std::size_t j = 0;
+      while (vy[j] != vx[0]) ++j;
+      bool same = true, rev = true;
+      for (std::size_t i = 0; i < k; ++i) {
+        same = same && vx[i] == vy[(j + i) % k];
+        rev = rev && vx[i] == vy[(j + k - i) % k];
+      }
+      return same ? 1 : (rev ? -1 : 0);
+    };
+    struct Acc
+    {
+      std::size_t dup = 0, opposite = 0;
+    };
+    auto acc = chunked<Acc>(nv, [&](std::size_t b, std::size_t e, Acc& s) {
+      for (std::size_t k = b; k < e; ++k) {
+        auto first = order.begin() + off[k], last = order.begin() + off[k + 1];
+        if (last - first < 2) continue;
+        std::sort(first, last, [&](Inspect_index x, Inspect_index y) {
+          int c = cmp(x, y);
+          return c != 0 ? c < 0 : x < y;
+        });
+        auto run = first;
+        for (auto it = first + 1; it != last; ++it) {
+          if (cmp(*run, *it) != 0) {
+            run = it;
+            continue;
+          }
+          ++s.dup;
+          if (orientation(*run, *it) < 0) ++s.opposite;
+        }
+      }
+    });
+    for (const Acc& s : acc) {
+      r_.duplicate_faces += s.dup;
+      r_.duplicate_faces_opposite += s.opposite;
+    }
+  }
+
+  // ---- edges ------------------------------------------------------------------
+  bool forward(std::size_t c, std::size_t e) const { return a_.corner_v[c] == a_.edge_v[2 * e]; }
+
+  void edge_pass()
+  {
+    const std::size_t ne = a_.num_edges();
+    edge_len_.assign(ne, std::numeric_limits<double>::quiet_NaN());
+    edge_dihedral_.assign(ne, std::numeric_limits<double>::quiet_NaN());
+    struct Acc
+    {
+      std::size_t boundary = 0, non_manifold = 0, inconsistent = 0, lengths = 0;
+      double sum = 0, max_dihedral = -1;
+    };
+    auto acc = chunked<Acc>(ne, [&](std::size_t b, std::size_t e_end, Acc& s) {
+      for (std::size_t e = b; e < e_end; ++e) {
+        const std::size_t nfe = a_.edge_off[e + 1] - a_.edge_off[e];
+        const Inspect_index v0 = a_.edge_v[2 * e], v1 = a_.edge_v[2 * e + 1];
+        if (nfe == 1) ++s.boundary;
+        if (nfe > 2) ++s.non_manifold;
+        if (a_.finite[v0] && a_.finite[v1]) {
+          const double *p = a_.point(v0), *q = a_.point(v1);
+          const double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+          edge_len_[e] = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+          s.sum += edge_len_[e];
+          ++s.lengths;
+        }
+        if (nfe != 2) continue;
+        const Inspect_index c0 = a_.edge_corners[a_.edge_off[e]],
+                            c1 = a_.edge_corners[a_.edge_off[e] + 1];
+        const bool same_direction = forward(c0, e) == forward(c1, e);
+        if (same_direction) ++s.inconsistent;
+        const Inspect_index f0 = a_.corner_f[c0], f1 = a_.corner_f[c1];
+        if (!face_ok_[f0] || !face_ok_[f1]) continue;
+        const double *n0 = &normal_[3 * f0], *n1 = &normal_[3 * f1];
+        // faces of inconsistent orientation: compare with one normal reversed,
+        // so that the angle measures the fold of the surface, not the labels
+        const double sg = same_direction ? -1.0 : 1.0;
+        const double dot = sg * (n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2]);
+        const double cx = n0[1] * n1[2] - n0[2] * n1[1], cy = n0[2] * n1[0] - n0[0] * n1[2],
+                     cz = n0[0] * n1[1] - n0[1] * n1[0];
+        const double cr = std::sqrt(cx * cx + cy * cy + cz * cz);
+        if ((n0[0] == 0 && n0[1] == 0 && n0[2] == 0) || (n1[0] == 0 && n1[1] == 0 && n1[2] == 0))
+          continue;
+        const double ang = std::atan2(cr, dot) * inspect_rad_to_deg;
+        edge_dihedral_[e] = ang;
+        s.max_dihedral = std::max(s.max_dihedral, ang);
+      }
+    });
+    Acc tot;
+    for (const Acc& s : acc) {
+      tot.boundary += s.boundary;
+      tot.non_manifold += s.non_manifold;
+      tot.inconsistent += s.inconsistent;
+      tot.lengths += s.lengths;
+      tot.sum += s.sum;
+      tot.max_dihedral = std::max(tot.max_dihedral, s.max_dihedral);
+    }
+    r_.boundary_edges = tot.boundary;
+    r_.non_manifold_edges = tot.non_manifold;
+    r_.inconsistent_orientation_edges = tot.inconsistent;
+    if (tot.max_dihedral >= 0) r_.max_dihedral_angle = tot.max_dihedral;
+    if (tot.lengths > 0) {
+      const double mean = tot.sum / double(tot.lengths);
+      r_.edge_length_mean = mean;
+      auto var = chunked<double>(ne, [&](std::size_t b, std::size_t e_end, double& s) {
+        for (std::size_t e = b; e < e_end; ++e)
+          if (!std::isnan(edge_len_[e])) s += (edge_len_[e] - mean) * (edge_len_[e] - mean);
+      });
+      double v = 0;
+      for (double x : var) v += x;
+      r_.edge_length_stddev = std::sqrt(v / double(tot.lengths));
+    }
+  }
+  std::vector<double> edge_dihedral_;
+
+  void vertex_accumulation()
+  {
+    const std::size_t nv = a_.num_vertices, ne = a_.num_edges();
+    valence_.assign(nv, 0);
+    not_interior_.assign(nv, 0);
+    boundary_vertex_.assign(nv, 0);
+    spiked_.assign(nv, 0);
+    std::vector<double> sum(nv, 0.0);
+    std::vector<Inspect_index> cnt(nv, 0);
+    for (std::size_t e = 0; e < ne; ++e) {
+      const std::size_t nfe = a_.edge_off[e + 1] - a_.edge_off[e];
+      const Inspect_index ends[2] = {a_.edge_v[2 * e], a_.edge_v[2 * e + 1]};
+      const bool spike = edge_dihedral_[e] > t_.spike_angle; // false for NaN
+      for (Inspect_index v : ends) {
+        ++valence_[v];
+        if (nfe != 2) not_interior_[v] = 1;
+        if (nfe == 1) boundary_vertex_[v] = 1;
+        if (spike) spiked_[v] = 1;
+        if (!std::isnan(edge_len_[e])) {
+          sum[v] += edge_len_[e];
+          ++cnt[v];
+        }
+      }
+    }
+    vertex_mean_len_.assign(nv, std::numeric_limits<double>::quiet_NaN());
+    std::size_t spiked = 0;
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (cnt[v]) vertex_mean_len_[v] = sum[v] / double(cnt[v]);
+      spiked += spiked_[v];
+    }
+    r_.spiked_vertices = spiked;
+  }
+
+  // RameshCleaner 3.6. Edge e is short when |e| < eps * l_g (zero edge) or
+  // |e| < delta * l_e with l_e the mean of the mean incident edge lengths of
+  // its two endpoints (skinny edge). A triangle is near-degenerate when one
+  // of its edges is a zero edge, or a skinny edge whose opposite angle in this
+  // triangle is below `skinny_angle`. An edge is collapsible when it is a zero
+  // edge, or a skinny edge with such a small opposite angle in an incident triangle.
+  void near_degenerate()
+  {
+    if (std::isnan(r_.edge_length_mean)) return;
+    const double zero_len = t_.zero_edge_factor * r_.edge_length_mean;
+    auto zero = [&](std::size_t e) { return edge_len_[e] < zero_len; };
+    auto skinny = [&](std::size_t e) {
+      const double le = 0.5 * (vertex_mean_len_[a_.edge_v[2 * e]] + vertex_mean_len_[a_.edge_v[2 * e + 1]]);
+      return edge_len_[e] < t_.skinny_edge_factor * le;
+    };
+    const std::size_t nf = a_.num_faces(), ne = a_.num_edges();
+    std::vector<unsigned char> small_opposite(ne, 0);
+    auto acc = chunked<std::size_t>(nf, [&](std::size_t b, std::size_t e_end, std::size_t& s) {
+      for (std::size_t f = b; f < e_end; ++f) {
+        if (a_.degree(f) != 3 || !face_ok_[f] || repeated_[f]) continue;
+        const std::size_t c0 = a_.face_off[f];
+        for (std::size_t i = 0; i < 3; ++i) {
+          const Inspect_index e = a_.corner_e[c0 + i];
+          if (e == inspect_npos) continue;
+          const double opposite = corner_angle_[c0 + (i + 2) % 3];
+          if (zero(e) || (opposite < t_.skinny_angle && skinny(e))) {
+            ++s;
+            break;
+          }
+        }
+      }
+    });
+    for (std::size_t s : acc) r_.near_degenerate_faces += s;
+    for (std::size_t f = 0; f < nf; ++f) {
+      if (a_.degree(f) != 3 || !face_ok_[f] || repeated_[f]) continue;
+      const std::size_t c0 = a_.face_off[f];
+      for (std::size_t i = 0; i < 3; ++i)
+        if (corner_angle_[c0 + (i + 2) % 3] < t_.skinny_angle && a_.corner_e[c0 + i] != inspect_npos)
+          small_opposite[a_.corner_e[c0 + i]] = 1;
+    }
+    auto acc2 = chunked<std::size_t>(ne, [&](std::size_t b, std::size_t e_end, std::size_t& s) {
+      for (std::size_t e = b; e < e_end; ++e) {
+        if (std::isnan(edge_len_[e])) continue;
+        if (zero(e) || (small_opposite[e] && skinny(e))) ++s;
+      }
+    });
+    for (std::size_t s : acc2) r_.collapsible_edges += s;
+  }
+
+  // ---- topology -----------------------------------------------------------------
+  // Faces linked through shared edges (of any multiplicity); faces with a
+  // repeated index are left out.
+  void components()
+  {
+    const std::size_t nf = a_.num_faces(), ne = a_.num_edges();
+    Union_find uf(nf);
+    for (std::size_t e = 0; e < ne; ++e) {
+      const Inspect_index f0 = a_.corner_f[a_.edge_corners[a_.edge_off[e]]];
+      for (Inspect_index i = a_.edge_off[e] + 1; i < a_.edge_off[e + 1]; ++i)
+        uf.unite(f0, a_.corner_f[a_.edge_corners[i]]);
+    }
+    std::vector<Inspect_index> size(nf, 0);
+    for (std::size_t f = 0; f < nf; ++f)
+      if (!a_.face_skip[f]) ++size[uf.find(static_cast<Inspect_index>(f))];
+    for (std::size_t f = 0; f < nf; ++f) {
+      if (size[f] == 0) continue;
+      ++r_.connected_components;
+      if (size[f] < t_.min_component_faces) ++r_.small_components;
+    }
+  }
+
+  // A vertex is non-manifold when the faces around it, linked through the
+  // edges incident to the vertex, form more than one group (fan).
+  void non_manifold_vertices()
+  {
+    const std::size_t nv = a_.num_vertices, nc = a_.corner_v.size();
+    std::vector<Inspect_index> off(nv + 1, 0);
+    for (std::size_t c = 0; c < nc; ++c)
+      if (a_.corner_e[c] != inspect_npos) ++off[a_.corner_v[c]];
+    Inspect_index total = exclusive_scan_in_place(off);
+    off[nv] = total;
+    std::vector<Inspect_index> vc(total);
+    {
+      std::vector<Inspect_index> pos(off.begin(), off.end() - 1);
+      for (std::size_t c = 0; c < nc; ++c)
+        if (a_.corner_e[c] != inspect_npos) vc[pos[a_.corner_v[c]]++] = static_cast<Inspect_index>(c);
+    }
+    non_manifold_vertex_.assign(nv, 0);
+    auto acc = chunked<std::size_t>(nv, [&](std::size_t b, std::size_t e, std::size_t& s) {
+      std::vector<std::pair<Inspect_index, Inspect_index>> link; // (edge, local face)
+      std::vector<Inspect_index> parent;
+      for (std::size_t v = b; v < e; ++v) {
+        const std::size_t k = off[v + 1] - off[v];
+        if (k < 2) continue;
+        link.clear();
+        for (std::size_t i = 0; i < k; ++i) {
+          const Inspect_index c = vc[off[v] + i];
+          link.emplace_back(a_.corner_e[c], static_cast<Inspect_index>(i));
+          link.emplace_back(a_.corner_e[a_.prev_corner(c)], static_cast<Inspect_index>(i));
+        }
+        std::sort(link.begin(), link.end());
+        parent.resize(k);
+        for (std::size_t i = 0; i < k; ++i) parent[i] = static_cast<Inspect_index>(i);
+        auto find = [&](Inspect_index x) {
+          while (parent[x] != x) x = parent[x] = parent[parent[x]];
+          return x;
+        };
+        std::size_t groups = k;
+        for (std::size_t i = 1; i < link.size(); ++i) {
+          if (link[i].first != link[i - 1].first) continue;
+          Inspect_index x = find(link[i].second), y = find(link[i - 1].second);
+          if (x != y) {
+            parent[std::max(x, y)] = std::min(x, y);
+            --groups;
+          }
+        }
+        if (groups > 1) {
+          non_manifold_vertex_[v] = 1;
+          ++s;
+        }
+      }
+    });
+    for (std::size_t s : acc) r_.non_manifold_vertices += s;
+  }
+  std::vector<unsigned char> non_manifold_vertex_;
+
+  void count_loops(const std::vector<std::size_t>& loops)
+  {
+    r_.boundary_loops = loops.size();
+    for (std::size_t n : loops)
+      if (n < t_.max_hole_vertices) ++r_.small_holes;
+  }
+
+  // Soup: a loop is a connected component of the graph of boundary edges; its
+  // size is its number of boundary edges.
+  void soup_loops()
+  {
+    const std::size_t nv = a_.num_vertices, ne = a_.num_edges();
+    Union_find uf(nv);
+    for (std::size_t e = 0; e < ne; ++e)
+      if (a_.edge_off[e + 1] - a_.edge_off[e] == 1) uf.unite(a_.edge_v[2 * e], a_.edge_v[2 * e + 1]);
+    std::vector<Inspect_index> size(nv, 0);
+    for (std::size_t e = 0; e < ne; ++e)
+      if (a_.edge_off[e + 1] - a_.edge_off[e] == 1) ++size[uf.find(a_.edge_v[2 * e])];
+    std::vector<std::size_t> loops;
+    for (std::size_t v = 0; v < nv; ++v)
+      if (size[v]) loops.push_back(size[v]);
+    count_loops(loops);
+  }
+
+  // A boundary vertex lying within `tol` of the interior of a boundary edge it
+  // is not an endpoint of: its projection falls strictly inside the edge, and
+  // it is farther than `tol` from both endpoints. Counted once per vertex.
+  void t_junctions()
+  {
+    const double tol = t_.t_junction_tolerance >= 0 ? t_.t_junction_tolerance
+                                                    : t_.t_junction_relative * bbox_diag_;
+    r_.t_junction_tolerance = tol;
+    const std::size_t ne = a_.num_edges(), nv = a_.num_vertices;
+    std::vector<K::Segment_3> segs;
+    std::vector<Inspect_index> seg_edge;
+    for (std::size_t e = 0; e < ne; ++e) {
+      if (a_.edge_off[e + 1] - a_.edge_off[e] != 1) continue;
+      const Inspect_index v0 = a_.edge_v[2 * e], v1 = a_.edge_v[2 * e + 1];
+      if (!a_.finite[v0] || !a_.finite[v1]) continue;
+      const double *p = a_.point(v0), *q = a_.point(v1);
+      segs.emplace_back(K::Point_3(p[0], p[1], p[2]), K::Point_3(q[0], q[1], q[2]));
+      seg_edge.push_back(static_cast<Inspect_index>(e));
+    }
+    if (segs.size() < 2) return;
+    using Iterator = std::vector<K::Segment_3>::const_iterator;
+    using Primitive = CGAL::AABB_segment_primitive<K, Iterator>;
+    using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+    Tree tree(segs.cbegin(), segs.cend());
+    tree.build();
+    std::vector<Inspect_index> bv;
+    for (std::size_t v = 0; v < nv; ++v)
+      if (boundary_vertex_[v] && a_.finite[v]) bv.push_back(static_cast<Inspect_index>(v));
+    const double tol2 = tol * tol;
+    auto acc = chunked<std::size_t>(bv.size(), [&](std::size_t b, std::size_t e_end, std::size_t& s) {
+      std::vector<Primitive::Id> hits;
+      for (std::size_t i = b; i < e_end; ++i) {
+        const Inspect_index v = bv[i];
+        const double* p = a_.point(v);
+        hits.clear();
+        tree.all_intersected_primitives(
+            K::Iso_cuboid_3(p[0] - tol, p[1] - tol, p[2] - tol, p[0] + tol, p[1] + tol, p[2] + tol),
+            std::back_inserter(hits));
+        for (const auto& id : hits) {
+          const std::size_t e = seg_edge[static_cast<std::size_t>(id - segs.cbegin())];
+          const Inspect_index v0 = a_.edge_v[2 * e], v1 = a_.edge_v[2 * e + 1];
+          if (v0 == v || v1 == v) continue;
+          const double *x = a_.point(v0), *y = a_.point(v1);
+          const double d[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
+          const double w[3] = {p[0] - x[0], p[1] - x[1], p[2] - x[2]};
+          const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+          if (dd == 0) continue;
+          const double tpar = (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd;
+          if (tpar <= 0 || tpar >= 1) continue;
+          const double r[3] = {w[0] - tpar * d[0], w[1] - tpar * d[1], w[2] - tpar * d[2]};
+          const double u[3] = {p[0] - y[0], p[1] - y[1], p[2] - y[2]};
+          if (r[0] * r[0] + r[1] * r[1] + r[2] * r[2] > tol2) continue;
+          if (w[0] * w[0] + w[1] * w[1] + w[2] * w[2] <= tol2) continue;
+          if (u[0] * u[0] + u[1] * u[1] + u[2] * u[2] <= tol2) continue;
+          ++s;
+          break;
+        }
+      }
+    });
+    for (std::size_t s : acc) r_.t_junctions += s;
+  }
+
+  void valence_and_closedness()
+  {
+    const std::size_t nv = a_.num_vertices;
+    double dev = 0;
+    std::size_t n = 0;
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (!referenced_[v] || valence_[v] == 0 || not_interior_[v] || non_manifold_vertex_[v]) continue;
+      dev += std::abs(double(valence_[v]) - 6.0);
+      ++n;
+    }
+    if (n > 0) r_.mean_valence_deviation = dev / double(n);
+    r_.closed = r_.faces > 0 && r_.boundary_edges == 0;
+    if (r_.closed && r_.non_manifold_edges == 0 && r_.inconsistent_orientation_edges == 0 &&
+        r_.repeated_index_faces == 0 && non_finite_referenced == 0)
+      r_.volume = volume_sum_;
+  }
+};
+
+} // namespace internal
+} // namespace mrepair
+
+#endif // MREPAIR_INTERNAL_INSPECT_ANALYSIS_H

@@ -1,0 +1,243 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_INTERNAL_INSPECT_SELF_INTERSECTIONS_H
+#define MREPAIR_INTERNAL_INSPECT_SELF_INTERSECTIONS_H
+
+#include <mrepair/internal/inspect/parallel.h>
+#include <mrepair/internal/inspect/surface_arrays.h>
+
+#include <CGAL/Bbox_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/box_intersection_d.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace mrepair {
+namespace internal {
+
+// Counts pairs of distinct triangles that intersect other than through what
+// they share, with the semantics of CGAL 5.5's `PMP::self_intersections`
+// (`do_faces_intersect` in <CGAL/Polygon_mesh_processing/self_intersections.h>):
+// - sharing an edge: they intersect when the two opposite vertices are
+//   coplanar with the edge and on the same side of it (overlap);
+// - sharing a vertex only: when the segment opposite the shared vertex in one
+//   triangle meets the other triangle (either way round);
+// - sharing nothing: when the triangles meet (exact predicate).
+// Only `eligible` faces take part (triangles with finite, non-collinear corners:
+// CGAL reports a degenerate face only as the pair (f, f)).
+//
+// Broad phase: a uniform grid of cells twice the mean face extent, built by a
+// counting sort of (cell, face) entries on a cell hash; each candidate pair is
+// tested in the one cell that holds the lower corner of the overlap of the
+// two boxes, so it is tested once. The rare faces spanning many cells are
+// matched by CGAL's box_intersection_d instead. Cells are processed in parallel.
+class Self_intersection_counter
+{
+  using K = CGAL::Epick;
+  using Point = K::Point_3;
+  const Surface_arrays& a_;
+
+  Point point(Inspect_index v) const
+  {
+    const double* p = a_.point(v);
+    return Point(p[0], p[1], p[2]);
+  }
+
+public:
+  explicit Self_intersection_counter(const Surface_arrays& a) : a_(a) {}
+
+  bool intersect(Inspect_index f, Inspect_index g) const
+  {
+    const Inspect_index* fv = &a_.corner_v[a_.face_off[f]];
+    const Inspect_index* gv = &a_.corner_v[a_.face_off[g]];
+    const Inspect_index* fe = &a_.corner_e[a_.face_off[f]];
+    const Inspect_index* ge = &a_.corner_e[a_.face_off[g]];
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l)
+        if (fe[k] == ge[l] && fe[k] != inspect_npos) {
+          const Point u = point(fv[k]), w = point(fv[(k + 1) % 3]), c = point(fv[(k + 2) % 3]),
+                      d = point(gv[(l + 2) % 3]);
+          return CGAL::coplanar(u, w, c, d) && CGAL::coplanar_orientation(u, w, c, d) == CGAL::POSITIVE;
+        }
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (fv[i] == gv[j]) {
+          // quick exits with the exact orientation predicate: an opposite
+          // segment strictly on one side of the other triangle's plane misses it
+          const Point f0 = point(fv[0]), f1 = point(fv[1]), f2 = point(fv[2]);
+          const Point g0 = point(gv[0]), g1 = point(gv[1]), g2 = point(gv[2]);
+          const Point& gd = j == 0 ? g1 : g0;
+          const Point& ge = j == 2 ? g1 : g2;
+          const Point& fd = i == 0 ? f1 : f0;
+          const Point& fe = i == 2 ? f1 : f2;
+          const CGAL::Orientation o1 = CGAL::orientation(f0, f1, f2, gd);
+          const bool g_misses_f = o1 != CGAL::COPLANAR && o1 == CGAL::orientation(f0, f1, f2, ge);
+          if (g_misses_f) {
+            const CGAL::Orientation o2 = CGAL::orientation(g0, g1, g2, fd);
+            if (o2 != CGAL::COPLANAR && o2 == CGAL::orientation(g0, g1, g2, fe)) return false;
+          }
+          const K::Triangle_3 tf(point(fv[0]), point(fv[1]), point(fv[2]));
+          const K::Triangle_3 tg(point(gv[0]), point(gv[1]), point(gv[2]));
+          const K::Segment_3 sf(point(fv[(i + 1) % 3]), point(fv[(i + 2) % 3]));
+          const K::Segment_3 sg(point(gv[(j + 1) % 3]), point(gv[(j + 2) % 3]));
+          return CGAL::do_intersect(tf, sg) || CGAL::do_intersect(tg, sf);
+        }
+    const K::Triangle_3 tf(point(fv[0]), point(fv[1]), point(fv[2]));
+    const K::Triangle_3 tg(point(gv[0]), point(gv[1]), point(gv[2]));
+    return CGAL::do_intersect(tf, tg);
+  }
+
+  std::size_t count(const std::vector<unsigned char>& eligible) const
+  {
+    std::vector<Inspect_index> F;
+    for (std::size_t f = 0; f < a_.num_faces(); ++f)
+      if (eligible[f]) F.push_back(static_cast<Inspect_index>(f));
+    const std::size_t n = F.size();
+    if (n < 2) return 0;
+    std::vector<double> box(6 * n);
+    parallel_for_index(n, 8192, [&](std::size_t i) {
+      const Inspect_index* v = &a_.corner_v[a_.face_off[F[i]]];
+      double* b = &box[6 * i];
+      for (int d = 0; d < 3; ++d) {
+        const double x = a_.point(v[0])[d], y = a_.point(v[1])[d], z = a_.point(v[2])[d];
+        b[d] = std::min(x, std::min(y, z));
+        b[3 + d] = std::max(x, std::max(y, z));
+      }
+    });
+    struct Ext
+    {
+      double extent = 0;
+      double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    };
+    Ext tot;
+    for (const Ext& e : chunked<Ext>(n, [&](std::size_t b, std::size_t e, Ext& s) {
+           for (std::size_t i = b; i < e; ++i) {
+             const double* x = &box[6 * i];
+             s.extent += std::max(x[3] - x[0], std::max(x[4] - x[1], x[5] - x[2]));
+             for (int d = 0; d < 3; ++d) {
+               s.lo[d] = std::min(s.lo[d], x[d]);
+               s.hi[d] = std::max(s.hi[d], x[3 + d]);
+             }
+           }
+         })) {
+      tot.extent += e.extent;
+      for (int d = 0; d < 3; ++d) {
+        tot.lo[d] = std::min(tot.lo[d], e.lo[d]);
+        tot.hi[d] = std::max(tot.hi[d], e.hi[d]);
+      }
+    }
+    double h = 2.0 * tot.extent / double(n);
+    for (int d = 0; d < 3; ++d) h = std::max(h, (tot.hi[d] - tot.lo[d]) / double(1 << 20));
+    if (!(h > 0)) h = 1.0;
+    auto cell = [&](double x, int d) {
+      return static_cast<std::uint64_t>(std::floor((x - tot.lo[d]) / h));
+    };
+    auto key = [](std::uint64_t i, std::uint64_t j, std::uint64_t k) { return (i << 42) | (j << 21) | k; };
+
+    // cells covered by each face; faces covering many cells are "big"
+    const std::uint64_t big_cells = 64;
+    std::vector<Inspect_index> count(n + 1, 0);
+    parallel_for_index(n, 8192, [&](std::size_t i) {
+      const double* x = &box[6 * i];
+      std::uint64_t c = 1;
+      for (int d = 0; d < 3; ++d) c *= cell(x[3 + d], d) - cell(x[d], d) + 1;
+      count[i] = c > big_cells ? 0 : static_cast<Inspect_index>(c);
+    });
+    std::vector<std::size_t> big;
+    for (std::size_t i = 0; i < n; ++i)
+      if (count[i] == 0) big.push_back(i);
+    const Inspect_index total = exclusive_scan_in_place(count);
+    count[n] = total;
+    std::vector<std::uint64_t> ekey(total);
+    std::vector<Inspect_index> eface(total);
+    parallel_for_index(n, 8192, [&](std::size_t i) {
+      const double* x = &box[6 * i];
+      Inspect_index o = count[i];
+      if (o == count[i + 1]) return;
+      for (std::uint64_t a = cell(x[0], 0); a <= cell(x[3], 0); ++a)
+        for (std::uint64_t b = cell(x[1], 1); b <= cell(x[4], 1); ++b)
+          for (std::uint64_t c = cell(x[2], 2); c <= cell(x[5], 2); ++c) {
+            ekey[o] = key(a, b, c);
+            eface[o++] = static_cast<Inspect_index>(i);
+          }
+    });
+    // counting sort of the entries on a hash of their cell
+    const std::size_t nb = std::max<std::size_t>(1, total);
+    auto bucket_of = [nb](std::uint64_t k) {
+      k *= 0x9E3779B97F4A7C15ull;
+      k ^= k >> 29;
+      return static_cast<std::size_t>(k % nb);
+    };
+    std::vector<Inspect_index> boff(nb + 1, 0);
+    for (std::size_t e = 0; e < total; ++e) ++boff[bucket_of(ekey[e])];
+    exclusive_scan_in_place(boff);
+    boff[nb] = total;
+    std::vector<Inspect_index> order(total);
+    {
+      std::vector<Inspect_index> pos(boff.begin(), boff.end() - 1);
+      for (std::size_t e = 0; e < total; ++e) order[pos[bucket_of(ekey[e])]++] = static_cast<Inspect_index>(e);
+    }
+    auto overlap = [&](std::size_t i, std::size_t j) {
+      const double *x = &box[6 * i], *y = &box[6 * j];
+      for (int d = 0; d < 3; ++d)
+        if (x[d] > y[3 + d] || y[d] > x[3 + d]) return false;
+      return true;
+    };
+    std::size_t pairs = 0;
+    for (std::size_t s : chunked<std::size_t>(nb, [&](std::size_t b, std::size_t e, std::size_t& s) {
+           for (std::size_t k = b; k < e; ++k) {
+             auto first = order.begin() + boff[k], last = order.begin() + boff[k + 1];
+             if (last - first < 2) continue;
+             std::sort(first, last, [&](Inspect_index x, Inspect_index y) {
+               return ekey[x] != ekey[y] ? ekey[x] < ekey[y] : x < y;
+             });
+             for (auto r = first; r != last;) {
+               auto r_end = r + 1;
+               while (r_end != last && ekey[*r_end] == ekey[*r]) ++r_end;
+               const std::uint64_t ck = ekey[*r];
+               for (auto p = r; p != r_end; ++p)
+                 for (auto q = p + 1; q != r_end; ++q) {
+                   const std::size_t i = eface[*p], j = eface[*q];
+                   if (!overlap(i, j)) continue;
+                   const double *x = &box[6 * i], *y = &box[6 * j];
+                   if (key(cell(std::max(x[0], y[0]), 0), cell(std::max(x[1], y[1]), 1),
+                           cell(std::max(x[2], y[2]), 2)) != ck)
+                     continue; // tested in another cell
+                   if (intersect(F[i], F[j])) ++s;
+                 }
+               r = r_end;
+             }
+           }
+         }))
+      pairs += s;
+
+    // big faces: against the others (box_intersection_d) and among themselves
+    if (!big.empty()) {
+      // explicit ids: box_self_intersection_d copies the boxes
+      using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t,
+                                                            CGAL::Box_intersection_d::ID_EXPLICIT>;
+      auto make = [&](std::size_t i) {
+        const double* x = &box[6 * i];
+        return Box(CGAL::Bbox_3(x[0], x[1], x[2], x[3], x[4], x[5]), i);
+      };
+      std::vector<Box> bigs, rest;
+      for (std::size_t i : big) bigs.push_back(make(i));
+      for (std::size_t i = 0; i < n; ++i)
+        if (count[i] != count[i + 1]) rest.push_back(make(i));
+      auto report = [&](const Box& p, const Box& q) {
+        if (intersect(F[p.info()], F[q.info()])) ++pairs;
+      };
+      std::vector<Box> bigs2 = bigs;
+      CGAL::box_intersection_d(bigs.begin(), bigs.end(), rest.begin(), rest.end(), report);
+      CGAL::box_self_intersection_d(bigs2.begin(), bigs2.end(), report);
+    }
+    return pairs;
+  }
+};
+
+} // namespace internal
+} // namespace mrepair
+
+#endif // MREPAIR_INTERNAL_INSPECT_SELF_INTERSECTIONS_H

@@ -1,0 +1,237 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_INTERNAL_IO_BUILD_MESH_H
+#define MREPAIR_INTERNAL_IO_BUILD_MESH_H
+
+// A fast polygon-soup-to-mesh builder on flat arrays. It checks what
+// CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh checks
+// (polygons of >= 3 distinct vertices, every directed edge used once, every
+// vertex's faces forming one fan) with sorted per-vertex halfedge lists
+// instead of a std::set, then wires the halfedge structure directly through
+// the MutableFaceGraph primitives (add_edge, add_face, set_next, ...), which
+// is much cheaper than Euler::add_face per polygon. Points not used by any
+// polygon are left out (polygon_soup_to_polygon_mesh would add them as
+// isolated vertices, which CGAL::is_valid_polygon_mesh rejects).
+
+#include <boost/graph/graph_traits.hpp>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mrepair {
+namespace internal {
+namespace io {
+
+/// the halfedge topology of a soup: corner c is the halfedge from vertex
+/// indices[c] to the next vertex of its polygon.
+class Soup_topology
+{
+  struct Out
+  {
+    std::size_t dst, corner;
+  };
+
+public:
+  static constexpr std::size_t none = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> next, prev, opposite;  // per corner
+  std::vector<std::size_t> out_start, out;        // corners leaving each vertex (CSR)
+
+  /// returns false with a reason when the soup is not a polygon mesh.
+  bool compute(std::size_t num_points, const std::int64_t* indices, const std::size_t* starts,
+               std::size_t num_polygons, std::string& why)
+  {
+    const std::size_t nc = starts[num_polygons];
+    next.resize(nc);
+    prev.resize(nc);
+    std::vector<std::int64_t> tmp;  // large polygons' sorted indices
+    for (std::size_t f = 0; f < num_polygons; ++f) {
+      const std::size_t b = starts[f], e = starts[f + 1];
+      if (e - b < 3) {
+        why = "polygon " + std::to_string(f) + " has fewer than 3 vertices";
+        return false;
+      }
+      for (std::size_t c = b; c < e; ++c) {
+        if (indices[c] < 0 || static_cast<std::uint64_t>(indices[c]) >= num_points) {
+          why = "polygon " + std::to_string(f) + " has an index out of range";
+          return false;
+        }
+        next[c] = c + 1 < e ? c + 1 : b;
+        prev[c] = c > b ? c - 1 : e - 1;
+      }
+      // no vertex twice in a polygon (small polygons: pairwise; large: sorted copy)
+      bool repeated = false;
+      if (e - b <= 8) {
+        for (std::size_t i = b; i < e && !repeated; ++i)
+          for (std::size_t j = i + 1; j < e && !repeated; ++j) repeated = indices[i] == indices[j];
+      } else {
+        tmp.assign(indices + b, indices + e);
+        std::sort(tmp.begin(), tmp.end());
+        repeated = std::adjacent_find(tmp.begin(), tmp.end()) != tmp.end();
+      }
+      if (repeated) {
+        why = "polygon " + std::to_string(f) + " repeats a vertex";
+        return false;
+      }
+    }
+    auto src = [&](std::size_t c) { return static_cast<std::size_t>(indices[c]); };
+    auto dst = [&](std::size_t c) { return static_cast<std::size_t>(indices[next[c]]); };
+
+    // corners grouped by source vertex, each group sorted by target; the
+    // target is stored beside the corner so that lookups stay in one group
+    out_start.assign(num_points + 1, 0);
+    for (std::size_t c = 0; c < nc; ++c) ++out_start[src(c) + 1];
+    for (std::size_t v = 0; v < num_points; ++v) out_start[v + 1] += out_start[v];
+    std::vector<Out> adj(nc);
+    {
+      std::vector<std::size_t> fill(num_points);
+      std::copy(out_start.begin(), out_start.begin() + static_cast<std::ptrdiff_t>(num_points),
+                fill.begin());
+      for (std::size_t c = 0; c < nc; ++c) adj[fill[src(c)]++] = Out{dst(c), c};
+    }
+    for (std::size_t v = 0; v < num_points; ++v) {
+      Out* b = adj.data() + out_start[v];
+      Out* e = adj.data() + out_start[v + 1];
+      if (e - b <= 16) {  // insertion sort: groups are small (valence)
+        for (Out* i = b + 1; i < e; ++i)
+          for (Out* j = i; j > b && j->dst < (j - 1)->dst; --j) std::swap(*j, *(j - 1));
+      } else {
+        std::sort(b, e, [](const Out& x, const Out& y) { return x.dst < y.dst; });
+      }
+      for (Out* it = b; it != e; ++it) {
+        if (it->dst == v) {
+          why = "a polygon repeats vertex " + std::to_string(v);
+          return false;
+        }
+        if (it + 1 != e && it->dst == (it + 1)->dst) {
+          why = "edge (" + std::to_string(v) + ", " + std::to_string(it->dst) +
+                ") is used twice in the same direction (non-manifold edge or inconsistent orientation)";
+          return false;
+        }
+      }
+    }
+    // opposite of corner c (u -> w): the corner w -> u
+    opposite.assign(nc, none);
+    for (std::size_t u = 0; u < num_points; ++u)
+      for (std::size_t k = out_start[u]; k < out_start[u + 1]; ++k) {
+        const std::size_t w = adj[k].dst;
+        const Out* b = adj.data() + out_start[w];
+        const Out* e = adj.data() + out_start[w + 1];
+        const Out* it = e - b <= 16 ? std::find_if(b, e, [u](const Out& o) { return o.dst == u; })
+                                    : std::lower_bound(b, e, u, [](const Out& o, std::size_t t) { return o.dst < t; });
+        if (it != e && it->dst == u) opposite[adj[k].corner] = it->corner;
+      }
+    out.resize(nc);
+    for (std::size_t k = 0; k < nc; ++k) out[k] = adj[k].corner;
+    adj = std::vector<Out>();
+    // one fan per vertex: corners at v chained by c -> next[opposite[c]]
+    for (std::size_t v = 0; v < num_points; ++v) {
+      const std::size_t deg = out_start[v + 1] - out_start[v];
+      if (deg == 0) continue;
+      std::size_t start = none, starts_count = 0;
+      for (std::size_t k = out_start[v]; k < out_start[v + 1]; ++k) {
+        const std::size_t c = out[k];
+        if (opposite[prev[c]] == none) {
+          ++starts_count;
+          start = c;
+        }
+      }
+      if (starts_count > 1) {
+        why = "vertex " + std::to_string(v) + " is non-manifold (several fans of faces)";
+        return false;
+      }
+      if (start == none) start = out[out_start[v]];
+      std::size_t steps = 0, c = start;
+      do {
+        ++steps;
+        c = opposite[c] == none ? none : next[opposite[c]];
+      } while (c != none && c != start && steps <= deg);
+      if (steps != deg) {
+        why = "vertex " + std::to_string(v) + " is non-manifold (several fans of faces)";
+        return false;
+      }
+    }
+    return true;
+  }
+};
+
+/// builds `g` (assumed empty) from a soup whose topology `t` was computed
+/// successfully; `put_point(vpm, v, i)` stores point i at vertex v.
+template <class PolygonMesh, class PutPoint>
+void build_mesh(const Soup_topology& t, std::size_t num_points, const std::int64_t* indices,
+                const std::size_t* starts, std::size_t num_polygons, PolygonMesh& g,
+                PutPoint put_point)
+{
+  using GT = boost::graph_traits<PolygonMesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+  const std::size_t none = Soup_topology::none;
+  const std::size_t nc = starts[num_polygons];
+
+  std::size_t num_edges = 0, num_used = 0;
+  for (std::size_t i = 0; i < num_points; ++i) num_used += t.out_start[i + 1] != t.out_start[i];
+  for (std::size_t c = 0; c < nc; ++c)
+    if (t.opposite[c] == none || c < t.opposite[c]) ++num_edges;
+  reserve(g, static_cast<typename GT::vertices_size_type>(num_used),
+                static_cast<typename GT::edges_size_type>(num_edges),
+                static_cast<typename GT::faces_size_type>(num_polygons));
+
+  // only points used by a polygon: an isolated vertex fails is_valid_polygon_mesh
+  std::vector<vertex_descriptor> vd(num_points, GT::null_vertex());
+  for (std::size_t i = 0; i < num_points; ++i) {
+    if (t.out_start[i + 1] == t.out_start[i]) continue;
+    vd[i] = add_vertex(g);
+    put_point(vd[i], i);
+  }
+  // one edge per corner pair; the border halfedge of a boundary corner in `border`
+  std::vector<halfedge_descriptor> hd(nc);
+  std::vector<halfedge_descriptor> border(nc, GT::null_halfedge());
+  for (std::size_t c = 0; c < nc; ++c) {
+    const std::size_t o = t.opposite[c];
+    if (o != none && o < c) continue;
+    halfedge_descriptor h = halfedge(add_edge(g), g);
+    hd[c] = h;
+    if (o != none)
+      hd[o] = opposite(h, g);
+    else
+      border[c] = opposite(h, g);
+  }
+  auto vertex_of = [&](std::size_t c) { return vd[static_cast<std::size_t>(indices[c])]; };
+  for (std::size_t f = 0; f < num_polygons; ++f) {
+    face_descriptor fd = add_face(g);
+    set_halfedge(fd, hd[starts[f]], g);
+    for (std::size_t c = starts[f]; c < starts[f + 1]; ++c) {
+      halfedge_descriptor h = hd[c];
+      set_target(h, vertex_of(t.next[c]), g);
+      set_next(h, hd[t.next[c]], g);
+      set_face(h, fd, g);
+      set_halfedge(vertex_of(t.next[c]), h, g);
+    }
+  }
+  // border halfedges: the one of corner c (u -> w) runs w -> u; its next leaves
+  // u along the border, i.e. is the border halfedge of the corner entering u
+  // that has no opposite (the start of u's fan)
+  for (std::size_t c = 0; c < nc; ++c) {
+    if (border[c] == GT::null_halfedge()) continue;
+    const std::size_t u = static_cast<std::size_t>(indices[c]);
+    const halfedge_descriptor b = border[c];
+    set_target(b, vd[u], g);
+    set_face(b, GT::null_face(), g);
+    // the fan of u ends at c; walk back to its start: the corner at u whose
+    // incoming halfedge has no opposite
+    std::size_t s = none;
+    for (std::size_t k = t.out_start[u]; k < t.out_start[u + 1]; ++k)
+      if (t.opposite[t.prev[t.out[k]]] == none) s = t.out[k];
+    // s exists: u has a border corner, so its fan is a path
+    set_next(b, border[t.prev[s]], g);
+    set_halfedge(vd[u], b, g);  // border vertices point to a border halfedge
+  }
+}
+
+} // namespace io
+} // namespace internal
+} // namespace mrepair
+
+#endif // MREPAIR_INTERNAL_IO_BUILD_MESH_H

@@ -1,0 +1,351 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Worker of repair_near_degenerate_faces() (RameshCleaner 3.6, Algorithm 1).
+#ifndef MREPAIR_INTERNAL_SCAN_CLEAN_NEAR_DEGENERATE_IMPL_H
+#define MREPAIR_INTERNAL_SCAN_CLEAN_NEAR_DEGENERATE_IMPL_H
+
+#include <mrepair/geometric_statistics.h>
+#include <mrepair/internal/scan_clean/common.h>
+
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <queue>
+#include <vector>
+
+namespace mrepair {
+namespace internal {
+namespace scan_clean {
+
+struct Near_degenerate_settings
+{
+  double zero_edge_factor = 0.1;     // epsilon
+  double skinny_edge_factor = 0.25;  // delta
+  double skinny_angle = 0.0;         // radians
+  double max_normal_deviation = 0.0; // radians
+  std::size_t max_operations = 0;
+};
+
+struct Near_degenerate_counts
+{
+  std::size_t collapsible_edges_initial = 0;
+  std::size_t edges_collapsed = 0;
+  std::size_t edges_flipped = 0;
+  std::size_t rejected_link_condition = 0;
+  std::size_t rejected_normal_test = 0;
+  std::size_t rejected_boundary = 0;
+  bool cancelled = false;
+  bool hit_operation_cap = false;
+};
+
+// Counts faces with a zero edge, or a skinny edge whose opposite angle in the
+// face is below the skinny angle (the definition of inspect.h). When `flagged`
+// is given, it receives the halfedges that make their face near-degenerate:
+// their edges are exactly the collapsible edges, so this one pass also scores.
+template <typename Mesh, typename VPM>
+std::size_t count_near_degenerate_faces(
+    const Geometric_statistics<Mesh, VPM>& st, const Near_degenerate_settings& s,
+    std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor>* flagged = nullptr)
+{
+  const Mesh& m = st.mesh();
+  using face_descriptor = typename boost::graph_traits<Mesh>::face_descriptor;
+  std::vector<face_descriptor> fs(faces(m).begin(), faces(m).end());
+  std::vector<unsigned char> bad(fs.size(), 0); // bit i: i-th halfedge of the face
+  const double zero_len = s.zero_edge_factor * st.global_mean_edge_length();
+  parallel_for_index<Mesh>(fs.size(), [&](std::size_t i) {
+    unsigned char bit = 1, mask = 0;
+    for (auto h : CGAL::halfedges_around_face(halfedge(fs[i], m), m)) {
+      const double l = st.length(h);
+      if (l < zero_len ||
+          (st.opposite_angle(h) < s.skinny_angle &&
+           l < s.skinny_edge_factor * st.local_mean_edge_length(h)))
+        mask |= bit;
+      bit = static_cast<unsigned char>(bit << 1);
+    }
+    bad[i] = mask;
+  });
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < fs.size(); ++i) {
+    if (!bad[i]) continue;
+    ++n;
+    if (!flagged) continue;
+    unsigned char bit = 1;
+    for (auto h : CGAL::halfedges_around_face(halfedge(fs[i], m), m)) {
+      if (bad[i] & bit) flagged->push_back(h);
+      bit = static_cast<unsigned char>(bit << 1);
+    }
+  }
+  return n;
+}
+
+template <typename Mesh, typename VPM, typename VisitorHandle>
+class Near_degenerate_repairer
+{
+  using GT = boost::graph_traits<Mesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using edge_descriptor = typename GT::edge_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+  using Stats = Geometric_statistics<Mesh, VPM>;
+  using Vec = typename Stats::Vec;
+  using Stamp_map =
+      typename boost::property_map<Mesh, CGAL::dynamic_halfedge_property_t<std::uint32_t>>::type;
+
+  struct Entry
+  {
+    double priority;
+    halfedge_descriptor h;
+    std::uint32_t stamp;
+    bool operator<(const Entry& o) const { return priority < o.priority; }
+  };
+
+  enum Outcome { done, rejected_link, rejected_normal, rejected_boundary };
+
+  Mesh& tm_;
+  VPM vpm_;
+  Stats& st_;
+  VisitorHandle& vis_;
+  Near_degenerate_settings s_;
+  Near_degenerate_counts& c_;
+  Stamp_map stamp_;
+  std::priority_queue<Entry> q_;
+  double cos_dev_;
+
+public:
+  Near_degenerate_repairer(Mesh& tm, VPM vpm, Stats& st, VisitorHandle& vis,
+                           const Near_degenerate_settings& s, Near_degenerate_counts& c)
+    : tm_(tm), vpm_(vpm), st_(st), vis_(vis), s_(s), c_(c),
+      stamp_(get(CGAL::dynamic_halfedge_property_t<std::uint32_t>(), tm)),
+      cos_dev_(std::cos(s.max_normal_deviation))
+  {}
+
+  // `flagged`: halfedges found by count_near_degenerate_faces (collapsible edges)
+  void run(const std::vector<halfedge_descriptor>& flagged)
+  {
+    // stamps start at 0 (Surface_mesh value-initialises, Polyhedron's map inserts 0)
+    for (halfedge_descriptor h : flagged) {
+      if (get(stamp_, h) != 0 || get(stamp_, opposite(h, tm_)) != 0) continue; // edge seen
+      push(h);
+      ++c_.collapsible_edges_initial;
+    }
+    const double total = static_cast<double>(c_.collapsible_edges_initial) + 1.0;
+    std::size_t pops = 0, ops = 0;
+    while (!q_.empty()) {
+      Entry en = q_.top();
+      q_.pop();
+      // stale or removed: only the stamp is read, the halfedge is not dereferenced
+      if (get(stamp_, en.h) != en.stamp) continue;
+      ++pops;
+      if (pops == 1 || (pops & 255u) == 0) { // poll the visitor now and then
+        if (vis_.stop_requested()) {
+          c_.cancelled = true;
+          return;
+        }
+        vis_.progress((std::min)(1.0, static_cast<double>(pops) / total));
+      }
+      if (ops >= s_.max_operations) {
+        c_.hit_operation_cap = true;
+        return;
+      }
+      halfedge_descriptor h = en.h;
+      if (!collapsible(h)) continue;
+      Outcome o = try_collapse(h);
+      if (o == done) {
+        ++ops;
+        continue;
+      }
+      if (try_flip(h)) {
+        ++ops;
+        continue;
+      }
+      if (o == rejected_link) ++c_.rejected_link_condition;
+      else if (o == rejected_normal) ++c_.rejected_normal_test;
+      else ++c_.rejected_boundary;
+    }
+  }
+
+private:
+  bool collapsible(halfedge_descriptor h) const
+  {
+    const double l = st_.length(h);
+    if (l < s_.zero_edge_factor * st_.global_mean_edge_length()) return true; // zero edge
+    if (!(l < s_.skinny_edge_factor * st_.local_mean_edge_length(h))) return false;
+    halfedge_descriptor o = opposite(h, tm_);
+    const double inf = std::numeric_limits<double>::infinity();
+    const double a = is_border(h, tm_) ? inf : st_.opposite_angle(h);
+    const double b = is_border(o, tm_) ? inf : st_.opposite_angle(o);
+    return (std::min)(a, b) < s_.skinny_angle; // skinny edge
+  }
+
+  void bump(halfedge_descriptor h)
+  {
+    put(stamp_, h, get(stamp_, h) + 1);
+    halfedge_descriptor o = opposite(h, tm_);
+    put(stamp_, o, get(stamp_, o) + 1);
+  }
+
+  void push(halfedge_descriptor h)
+  {
+    bump(h); // older entries of this edge become stale
+    const double l = st_.length(h);
+    q_.push(Entry{1.0 / (l + 1e-12 * st_.global_mean_edge_length() + 1e-300), h, get(stamp_, h)});
+  }
+
+  // edges incident to v and to its neighbours: their lengths, local means or
+  // opposite angles may have changed
+  void push_around(vertex_descriptor v)
+  {
+    if (halfedge(v, tm_) == GT::null_halfedge()) return;
+    for (halfedge_descriptor hv : CGAL::halfedges_around_source(v, tm_)) {
+      vertex_descriptor x = target(hv, tm_);
+      for (halfedge_descriptor hx : CGAL::halfedges_around_source(x, tm_))
+        if (collapsible(hx)) push(hx);
+    }
+  }
+
+  static bool is_border_vertex(vertex_descriptor v, const Mesh& m)
+  {
+    for (halfedge_descriptor h : CGAL::halfedges_around_target(v, m))
+      if (is_border(h, m)) return true;
+    return false;
+  }
+
+  Outcome try_collapse(halfedge_descriptor h)
+  {
+    const vertex_descriptor u = source(h, tm_), w = target(h, tm_);
+    const bool bu = is_border_vertex(u, tm_), bw = is_border_vertex(w, tm_);
+    const bool be = is_border_edge(h, tm_);
+    if (bu && bw && !be) return rejected_boundary; // would pinch the boundary
+    if (!CGAL::Euler::does_satisfy_link_condition(edge(h, tm_), tm_)) return rejected_link;
+    const Vec pu = st_.point(u), pw = st_.point(w);
+    const Vec mid{{0.5 * (pu[0] + pw[0]), 0.5 * (pu[1] + pw[1]), 0.5 * (pu[2] + pw[2])}};
+    std::array<Vec, 3> cand;
+    std::size_t n = 0;
+    if (bu != bw) {
+      cand[n++] = bu ? pu : pw; // a boundary vertex stays on the boundary
+    } else {
+      const bool u_first = st_.max_dihedral(u) >= st_.max_dihedral(w); // more featured first
+      cand[n++] = u_first ? pu : pw;
+      cand[n++] = mid;
+      cand[n++] = u_first ? pw : pu;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (normals_ok(h, cand[i])) {
+        collapse(h, cand[i]);
+        return done;
+      }
+    return rejected_normal;
+  }
+
+  // No face of the surviving 1-rings of source(h) and target(h) turns by more
+  // than the limit or becomes degenerate when both move to p.
+  bool normals_ok(halfedge_descriptor h, const Vec& p) const
+  {
+    const face_descriptor fa = face(h, tm_), fb = face(opposite(h, tm_), tm_);
+    for (vertex_descriptor x : {source(h, tm_), target(h, tm_)})
+      for (halfedge_descriptor hx : CGAL::halfedges_around_target(x, tm_)) {
+        const face_descriptor f = face(hx, tm_);
+        if (f == GT::null_face() || f == fa || f == fb) continue;
+        // f = (x, a, b) in order, starting at the corner x
+        const Vec a = st_.point(target(next(hx, tm_), tm_));
+        const Vec b = st_.point(source(hx, tm_));
+        const Vec n = Stats::cross(Stats::sub(a, p), Stats::sub(b, p));
+        const double nn = Stats::norm(n);
+        const double scale = Stats::dot(Stats::sub(a, p), Stats::sub(a, p)) +
+                             Stats::dot(Stats::sub(b, p), Stats::sub(b, p)) +
+                             Stats::dot(Stats::sub(a, b), Stats::sub(a, b));
+        const Vec& old = st_.normal(f);
+        const bool old_degenerate = Stats::is_zero(old);
+        if (!(nn > 1e-12 * scale)) {
+          if (!old_degenerate) return false; // becomes degenerate
+          continue;
+        }
+        if (old_degenerate) continue;
+        if (Stats::dot(n, old) < cos_dev_ * nn) return false;
+      }
+    return true;
+  }
+
+  void bump_around(vertex_descriptor x)
+  {
+    for (halfedge_descriptor hx : CGAL::halfedges_around_target(x, tm_)) bump(hx);
+  }
+
+  void collapse(halfedge_descriptor h, const Vec& p)
+  {
+    const vertex_descriptor u = source(h, tm_), w = target(h, tm_);
+    bump_around(u); // covers every halfedge the collapse removes
+    bump_around(w);
+    const edge_descriptor e = edge(h, tm_);
+    st_.before_edge_collapse(e);
+    vertex_descriptor v = CGAL::Euler::collapse_edge(e, tm_);
+    using Point = typename boost::property_traits<VPM>::value_type;
+    put(vpm_, v, Point(p[0], p[1], p[2]));
+    st_.after_edge_collapse(v);
+    ++c_.edges_collapsed;
+    push_around(v);
+  }
+
+  // Cap fallback: flip the edge opposite the obtuse angle of a face incident
+  // to h, when the flip raises the minimum angle and passes the normal test.
+  bool try_flip(halfedge_descriptor h)
+  {
+    for (halfedge_descriptor side : {h, opposite(h, tm_)}) {
+      if (is_border(side, tm_)) continue;
+      halfedge_descriptor g = side;
+      for (halfedge_descriptor x : CGAL::halfedges_around_face(side, tm_))
+        if (st_.opposite_angle(x) > st_.opposite_angle(g)) g = x;
+      if (st_.opposite_angle(g) <= 0.5 * 3.14159265358979323846) continue; // not a cap
+      if (is_border_edge(g, tm_)) continue;
+      const halfedge_descriptor og = opposite(g, tm_);
+      const vertex_descriptor a = source(g, tm_), b = target(g, tm_);
+      const vertex_descriptor c = target(next(g, tm_), tm_), d = target(next(og, tm_), tm_);
+      if (c == d || halfedge(c, d, tm_).second) continue;
+      if (degree(a, tm_) <= 3 || degree(b, tm_) <= 3) continue;
+      const Vec pa = st_.point(a), pb = st_.point(b), pc = st_.point(c), pd = st_.point(d);
+      // reference: area-weighted normal of the two old faces (a,b,c), (b,a,d)
+      const Vec n1 = Stats::cross(Stats::sub(pb, pa), Stats::sub(pc, pa));
+      const Vec n2 = Stats::cross(Stats::sub(pa, pb), Stats::sub(pd, pb));
+      const Vec ref{{n1[0] + n2[0], n1[1] + n2[1], n1[2] + n2[2]}};
+      const double nref = Stats::norm(ref);
+      if (!(nref > 0)) continue;
+      // new faces (a,d,c) and (d,b,c)
+      const Vec m1 = Stats::cross(Stats::sub(pd, pa), Stats::sub(pc, pa));
+      const Vec m2 = Stats::cross(Stats::sub(pb, pd), Stats::sub(pc, pd));
+      const double nm1 = Stats::norm(m1), nm2 = Stats::norm(m2);
+      if (!(nm1 > 0) || !(nm2 > 0)) continue;
+      if (Stats::dot(m1, ref) < cos_dev_ * nm1 * nref || Stats::dot(m2, ref) < cos_dev_ * nm2 * nref)
+        continue;
+      const double old_min = (std::min)(st_.min_angle(face(g, tm_)), st_.min_angle(face(og, tm_)));
+      const double new_min = (std::min)(min_angle(pa, pd, pc), min_angle(pd, pb, pc));
+      if (!(new_min > old_min)) continue;
+      for (vertex_descriptor x : {a, b}) bump_around(x);
+      const edge_descriptor e = edge(g, tm_);
+      st_.before_edge_flip(e);
+      CGAL::Euler::flip_edge(g, tm_);
+      st_.after_edge_flip(e);
+      ++c_.edges_flipped;
+      for (vertex_descriptor x : {a, b, c, d}) push_around(x);
+      return true;
+    }
+    return false;
+  }
+
+  static double min_angle(const Vec& a, const Vec& b, const Vec& c)
+  {
+    const double x = Stats::angle(Stats::sub(b, a), Stats::sub(c, a));
+    const double y = Stats::angle(Stats::sub(c, b), Stats::sub(a, b));
+    const double z = Stats::angle(Stats::sub(a, c), Stats::sub(b, c));
+    return (std::min)(x, (std::min)(y, z));
+  }
+};
+
+} // namespace scan_clean
+} // namespace internal
+} // namespace mrepair
+
+#endif // MREPAIR_INTERNAL_SCAN_CLEAN_NEAR_DEGENERATE_IMPL_H

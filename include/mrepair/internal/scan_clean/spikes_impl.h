@@ -1,0 +1,469 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Workers of relax_spikes() and remove_unrelaxable_spikes() (RameshCleaner 3.7, 3.8).
+#ifndef MREPAIR_INTERNAL_SCAN_CLEAN_SPIKES_IMPL_H
+#define MREPAIR_INTERNAL_SCAN_CLEAN_SPIKES_IMPL_H
+
+#include <mrepair/geometric_statistics.h>
+#include <mrepair/internal/scan_clean/common.h>
+
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace mrepair {
+namespace internal {
+namespace scan_clean {
+
+struct Spike_settings
+{
+  double spike_angle = 0;          // radians; dihedral criterion
+  double height_factor = 2.0;      // second criterion; <= 0 disables it
+  double start_angle = 0;          // a, radians
+  double full_angle = 0;           // b, radians
+  std::size_t rings = 3;           // n of the working region
+  std::size_t max_iterations = 10;
+  std::size_t max_removal_rounds = 3;
+};
+
+// Spike tests on current statistics.
+template <typename Mesh, typename VPM>
+class Spike_detector
+{
+  using GT = boost::graph_traits<Mesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using Stats = Geometric_statistics<Mesh, VPM>;
+  using Vec = typename Stats::Vec;
+  const Stats& st_;
+  const Spike_settings& s_;
+
+public:
+  Spike_detector(const Stats& st, const Spike_settings& s) : st_(st), s_(s) {}
+
+  bool by_dihedral(vertex_descriptor v) const { return st_.max_dihedral(v) > s_.spike_angle; }
+
+  // Tall narrow spikes keep every dihedral angle below 90 degrees, so the
+  // dihedral test misses them. Second criterion: the distance of v from the
+  // plane of its 1-ring (centroid, Newell normal of the link polygon) exceeds
+  // height_factor x the mean length of the link edges. Interior vertices only.
+  //
+  // Pre-filter: the test runs only where the maximum dihedral angle exceeds
+  // 15 degrees. A vertex at least 2 link lengths above its ring has steep faces
+  // whose normals turn by about 360/valence x sin(slope) > 15 degrees between
+  // neighbours (valence up to ~20), so no such spike is skipped, and the
+  // full-mesh scans touch the ring points of few vertices.
+  bool by_height(vertex_descriptor v) const
+  {
+    if (!(s_.height_factor > 0)) return false;
+    if (!(st_.max_dihedral(v) > 0.2617993877991494)) return false; // 15 degrees
+    const Mesh& m = st_.mesh();
+    halfedge_descriptor h0 = halfedge(v, m);
+    if (h0 == GT::null_halfedge()) return false;
+    Vec ring[64];
+    std::size_t k = 0;
+    for (halfedge_descriptor h : CGAL::halfedges_around_target(h0, m)) {
+      if (is_border(h, m) || k == 64) return false;
+      ring[k++] = st_.point(source(h, m));
+    }
+    if (k < 3) return false;
+    Vec c{{0, 0, 0}};
+    for (std::size_t i = 0; i < k; ++i)
+      for (int j = 0; j < 3; ++j) c[j] += ring[i][j] / static_cast<double>(k);
+    Vec n{{0, 0, 0}};
+    double link = 0;
+    for (std::size_t i = 0; i < k; ++i) {
+      const Vec& a = ring[i];
+      const Vec& b = ring[(i + 1) % k];
+      const Vec x = Stats::cross(Stats::sub(a, c), Stats::sub(b, c));
+      for (int j = 0; j < 3; ++j) n[j] += x[j];
+      link += Stats::norm(Stats::sub(b, a));
+    }
+    link /= static_cast<double>(k);
+    const double nn = Stats::norm(n);
+    if (!(nn > 0) || !(link > 0)) return false;
+    const double dist = std::abs(Stats::dot(Stats::sub(st_.point(v), c), n)) / nn;
+    return dist > s_.height_factor * link;
+  }
+
+  bool spiked(vertex_descriptor v) const { return by_dihedral(v) || by_height(v); }
+};
+
+// One parallel pass: the spiked vertices, and how many of them only the
+// height criterion finds.
+template <typename Mesh, typename VPM>
+std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>
+collect_spiked(const Geometric_statistics<Mesh, VPM>& st, const Spike_settings& s,
+               std::size_t* by_height_only = nullptr)
+{
+  const Mesh& m = st.mesh();
+  using vertex_descriptor = typename boost::graph_traits<Mesh>::vertex_descriptor;
+  std::vector<vertex_descriptor> vs(vertices(m).begin(), vertices(m).end());
+  std::vector<unsigned char> flag(vs.size(), 0);
+  Spike_detector<Mesh, VPM> det(st, s);
+  parallel_for_index<Mesh>(vs.size(), [&](std::size_t i) {
+    if (det.by_dihedral(vs[i])) flag[i] = 1;
+    else if (det.by_height(vs[i])) flag[i] = 2;
+  });
+  std::vector<vertex_descriptor> out;
+  std::size_t nh = 0;
+  for (std::size_t i = 0; i < vs.size(); ++i)
+    if (flag[i]) {
+      out.push_back(vs[i]);
+      nh += flag[i] == 2;
+    }
+  if (by_height_only) *by_height_only = nh;
+  return out;
+}
+
+template <typename Mesh, typename VPM>
+std::size_t count_spiked(const Geometric_statistics<Mesh, VPM>& st, const Spike_settings& s,
+                         std::size_t* by_height_only = nullptr)
+{
+  return collect_spiked(st, s, by_height_only).size();
+}
+
+struct Relax_counts
+{
+  std::size_t vertices_relaxed = 0;
+  std::size_t iterations = 0;
+  std::size_t spiked_in_region_before = 0;
+  std::size_t spiked_in_region_after = 0;
+  std::size_t region_vertices = 0;
+  bool cancelled = false;
+};
+
+template <typename Mesh, typename VPM, typename VisitorHandle>
+class Spike_relaxer
+{
+  using GT = boost::graph_traits<Mesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using Stats = Geometric_statistics<Mesh, VPM>;
+  using Vec = typename Stats::Vec;
+  using Mark =
+      typename boost::property_map<Mesh, CGAL::dynamic_vertex_property_t<std::uint32_t>>::type;
+
+  Mesh& tm_;
+  VPM vpm_;
+  Stats& st_;
+  VisitorHandle& vis_;
+  const Spike_settings& s_;
+  Relax_counts& c_;
+  Spike_detector<Mesh, VPM> det_;
+  Mark mark_;     // generation marks for set building
+  Mark in_w_;     // 1 in the working region
+  Mark moved_;    // 1 once moved
+  std::uint32_t gen_ = 0;
+
+public:
+  Spike_relaxer(Mesh& tm, VPM vpm, Stats& st, VisitorHandle& vis, const Spike_settings& s,
+                Relax_counts& c)
+    : tm_(tm), vpm_(vpm), st_(st), vis_(vis), s_(s), c_(c), det_(st, s),
+      mark_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm)),
+      in_w_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm)),
+      moved_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm))
+  {}
+
+  // w(theta) of eq. (2), with the bracket the paper misprints put right:
+  // R(v) = 0 for theta <= a, min(1, (theta - a)/(b - a)) L(v) above
+  // (the printed "(theta(v) - a/(b-a))" is not dimensionless and exceeds 1).
+  // A vertex flagged by the height criterion is relaxed fully.
+  double weight(vertex_descriptor v) const
+  {
+    if (det_.by_height(v)) return 1.0;
+    const double t = st_.max_dihedral(v);
+    if (!(t > s_.start_angle)) return 0.0;
+    if (!(s_.full_angle > s_.start_angle)) return 1.0;
+    return (std::min)(1.0, (t - s_.start_angle) / (s_.full_angle - s_.start_angle));
+  }
+
+  void run(std::vector<vertex_descriptor> S)
+  {
+    // working region W: n-ring of S
+    std::vector<vertex_descriptor> W;
+    for (vertex_descriptor v : S)
+      if (get(in_w_, v) != 1) {
+        put(in_w_, v, 1);
+        W.push_back(v);
+      }
+    std::size_t begin = 0;
+    for (std::size_t ring = 0; ring < s_.rings; ++ring) {
+      const std::size_t end = W.size();
+      for (std::size_t i = begin; i < end; ++i)
+        for (halfedge_descriptor h : CGAL::halfedges_around_target(W[i], tm_)) {
+          vertex_descriptor x = source(h, tm_);
+          if (get(in_w_, x) != 1) {
+            put(in_w_, x, 1);
+            W.push_back(x);
+          }
+        }
+      begin = end;
+    }
+    c_.region_vertices = W.size();
+    for (vertex_descriptor v : W)
+      if (det_.spiked(v)) ++c_.spiked_in_region_before;
+    struct Item
+    {
+      double w, l; // weight, |L| (tie-break: the most displaced first)
+      vertex_descriptor v;
+    };
+    std::vector<Item> R;
+    std::vector<vertex_descriptor> M;
+    while (!S.empty() && c_.iterations < s_.max_iterations) {
+      if (vis_.stop_requested()) {
+        c_.cancelled = true;
+        break;
+      }
+      // R = S and its 1-ring; Gauss-Seidel in order of decreasing weight so
+      // that the spike tip moves first and its neighbours see it relaxed
+      const std::uint32_t g = ++gen_;
+      R.clear();
+      auto add = [&](vertex_descriptor x) {
+        if (get(mark_, x) == g) return;
+        put(mark_, x, g);
+        const double w = weight(x);
+        if (w > 0) R.push_back(Item{w, Stats::norm(laplacian(x, st_.point(x))), x});
+      };
+      for (vertex_descriptor v : S) {
+        add(v);
+        for (halfedge_descriptor h : CGAL::halfedges_around_target(v, tm_)) add(source(h, tm_));
+      }
+      std::sort(R.begin(), R.end(), [](const Item& a, const Item& b) {
+        return a.w > b.w || (a.w == b.w && a.l > b.l);
+      });
+      M.clear();
+      for (const Item& r : R) M.push_back(r.v);
+      if (M.empty()) break;
+      st_.before_local_edit(M);
+      using Point = typename boost::property_traits<VPM>::value_type;
+      for (const Item& r : R) {
+        const vertex_descriptor v = r.v;
+        const Vec p = st_.point(v);
+        const Vec L = laplacian(v, p);
+        const double w = r.w;
+        put(vpm_, v, Point(p[0] + w * L[0], p[1] + w * L[1], p[2] + w * L[2]));
+        if (get(moved_, v) != 1) {
+          put(moved_, v, 1);
+          ++c_.vertices_relaxed;
+        }
+      }
+      st_.after_local_edit(M);
+      ++c_.iterations;
+      S.clear();
+      for (vertex_descriptor v : W)
+        if (det_.spiked(v)) S.push_back(v);
+      vis_.progress(static_cast<double>(c_.iterations) / static_cast<double>(s_.max_iterations));
+    }
+    c_.spiked_in_region_after = 0;
+    for (vertex_descriptor v : W)
+      if (det_.spiked(v)) ++c_.spiked_in_region_after;
+  }
+
+private:
+  // uniform Laplacian (1); on the boundary restricted to the boundary neighbours
+  Vec laplacian(vertex_descriptor v, const Vec& p) const
+  {
+    Vec sum{{0, 0, 0}};
+    std::size_t n = 0;
+    bool border = false;
+    for (halfedge_descriptor h : CGAL::halfedges_around_target(v, tm_))
+      if (is_border_edge(h, tm_)) border = true;
+    for (halfedge_descriptor h : CGAL::halfedges_around_target(v, tm_)) {
+      if (border && !is_border_edge(h, tm_)) continue;
+      const Vec q = st_.point(source(h, tm_));
+      for (int j = 0; j < 3; ++j) sum[j] += q[j];
+      ++n;
+    }
+    if (n == 0) return Vec{{0, 0, 0}};
+    return Vec{{sum[0] / n - p[0], sum[1] / n - p[1], sum[2] / n - p[2]}};
+  }
+};
+
+struct Removal_counts
+{
+  std::size_t spiked_found = 0;
+  std::size_t vertices_removed = 0;
+  std::size_t faces_removed = 0;
+  std::size_t dangling_faces_removed = 0;
+  std::size_t pinched_vertices_fixed = 0;
+  std::size_t boundary_loops = 0;
+  std::size_t rounds = 0;
+};
+
+template <typename Mesh, typename VPM>
+class Spike_remover
+{
+  using GT = boost::graph_traits<Mesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+  using Stats = Geometric_statistics<Mesh, VPM>;
+  using Vmark =
+      typename boost::property_map<Mesh, CGAL::dynamic_vertex_property_t<std::uint32_t>>::type;
+  using Fmark =
+      typename boost::property_map<Mesh, CGAL::dynamic_face_property_t<std::uint32_t>>::type;
+  using Hmark =
+      typename boost::property_map<Mesh, CGAL::dynamic_halfedge_property_t<std::uint32_t>>::type;
+
+  Mesh& tm_;
+  Stats& st_;
+  const Spike_settings& s_;
+  Removal_counts& c_;
+  Spike_detector<Mesh, VPM> det_;
+  Vmark vmark_, alive_;
+  Fmark fmark_;
+  Hmark hmark_;
+  std::uint32_t gen_ = 0;
+  std::vector<vertex_descriptor> region_; // surviving vertices next to removed faces
+
+public:
+  Spike_remover(Mesh& tm, Stats& st, const Spike_settings& s, Removal_counts& c)
+    : tm_(tm), st_(st), s_(s), c_(c), det_(st, s),
+      vmark_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm)),
+      alive_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm)),
+      fmark_(get(CGAL::dynamic_face_property_t<std::uint32_t>(), tm)),
+      hmark_(get(CGAL::dynamic_halfedge_property_t<std::uint32_t>(), tm))
+  {}
+
+  void run(const std::vector<vertex_descriptor>& spiked)
+  {
+    c_.spiked_found = spiked.size();
+    std::vector<vertex_descriptor> S = spiked;
+    while (!S.empty() && c_.rounds < s_.max_removal_rounds) {
+      ++c_.rounds;
+      std::vector<face_descriptor> F;
+      const std::uint32_t g = ++gen_;
+      for (vertex_descriptor v : S)
+        for (halfedge_descriptor h : CGAL::halfedges_around_target(v, tm_)) {
+          face_descriptor f = face(h, tm_);
+          if (f != GT::null_face() && get(fmark_, f) != g) {
+            put(fmark_, f, g);
+            F.push_back(f);
+          }
+        }
+      remove_faces(F, g);
+      c_.faces_removed += F.size();
+      fix_pinched();
+      // vertices still spiked next to the removal (new border vertices only)
+      S.clear();
+      for (vertex_descriptor v : live_region())
+        if (det_.spiked(v)) S.push_back(v);
+    }
+    count_loops();
+  }
+
+  std::vector<vertex_descriptor> live_region()
+  {
+    std::vector<vertex_descriptor> out;
+    const std::uint32_t g = ++gen_;
+    for (vertex_descriptor v : region_) // only the mark is read for removed vertices
+      if (get(alive_, v) == 1 && get(vmark_, v) != g) {
+        put(vmark_, v, g);
+        out.push_back(v);
+      }
+    region_ = out;
+    return out;
+  }
+
+private:
+  // Removes the faces F (all marked with fmark == g); keeps statistics current.
+  void remove_faces(const std::vector<face_descriptor>& F, std::uint32_t g)
+  {
+    std::vector<vertex_descriptor> B, A;
+    const std::uint32_t vg = ++gen_;
+    for (face_descriptor f : F)
+      for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, tm_), tm_)) {
+        vertex_descriptor x = target(h, tm_);
+        if (get(vmark_, x) == vg) continue;
+        put(vmark_, x, vg);
+        B.push_back(x);
+      }
+    // survivors: vertices with a face outside F (decided before removal)
+    for (vertex_descriptor x : B) {
+      bool keeps = false;
+      for (halfedge_descriptor h : CGAL::halfedges_around_target(x, tm_)) {
+        face_descriptor f = face(h, tm_);
+        if (f != GT::null_face() && get(fmark_, f) != g) {
+          keeps = true;
+          break;
+        }
+      }
+      put(alive_, x, keeps ? 1u : 0u);
+      if (keeps) A.push_back(x);
+    }
+    c_.vertices_removed += B.size() - A.size(); // remove_face drops isolated vertices
+    st_.before_local_edit(B);
+    for (face_descriptor f : F) CGAL::Euler::remove_face(halfedge(f, tm_), tm_);
+    st_.after_local_edit(A);
+    region_.insert(region_.end(), A.begin(), A.end());
+  }
+
+  // A removal can leave a vertex with two fans (two border halfedges around it):
+  // the smaller fans are removed as dangling faces until every vertex is manifold.
+  void fix_pinched()
+  {
+    for (int guard = 0; guard < 100; ++guard) {
+      std::vector<face_descriptor> F;
+      const std::uint32_t g = ++gen_;
+      for (vertex_descriptor v : live_region()) {
+        std::vector<halfedge_descriptor> around;
+        for (halfedge_descriptor h : CGAL::halfedges_around_target(v, tm_)) around.push_back(h);
+        std::size_t borders = 0, first = 0;
+        for (std::size_t i = 0; i < around.size(); ++i)
+          if (is_border(around[i], tm_)) {
+            if (borders == 0) first = i;
+            ++borders;
+          }
+        if (borders < 2) continue;
+        ++c_.pinched_vertices_fixed;
+        // fans: runs of non-border halfedges after each border one
+        std::vector<std::vector<face_descriptor>> fans;
+        for (std::size_t k = 1; k <= around.size(); ++k) {
+          halfedge_descriptor h = around[(first + k) % around.size()];
+          if (is_border(h, tm_)) {
+            fans.emplace_back();
+            continue;
+          }
+          if (fans.empty()) fans.emplace_back();
+          fans.back().push_back(face(h, tm_));
+        }
+        std::size_t keep = 0;
+        for (std::size_t i = 1; i < fans.size(); ++i)
+          if (fans[i].size() > fans[keep].size()) keep = i;
+        for (std::size_t i = 0; i < fans.size(); ++i)
+          if (i != keep)
+            for (face_descriptor f : fans[i])
+              if (get(fmark_, f) != g) {
+                put(fmark_, f, g);
+                F.push_back(f);
+              }
+      }
+      if (F.empty()) return;
+      remove_faces(F, g);
+      c_.dangling_faces_removed += F.size();
+    }
+  }
+
+  void count_loops()
+  {
+    const std::uint32_t g = ++gen_;
+    for (vertex_descriptor v : live_region())
+      for (halfedge_descriptor h : CGAL::halfedges_around_target(v, tm_)) {
+        if (!is_border(h, tm_) || get(hmark_, h) == g) continue;
+        ++c_.boundary_loops;
+        for (halfedge_descriptor b : CGAL::halfedges_around_face(h, tm_)) put(hmark_, b, g);
+      }
+  }
+};
+
+} // namespace scan_clean
+} // namespace internal
+} // namespace mrepair
+
+#endif // MREPAIR_INTERNAL_SCAN_CLEAN_SPIKES_IMPL_H

@@ -1,0 +1,1238 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_INTERNAL_STITCH_SOUP_SOUP_REPAIRER_H
+#define MREPAIR_INTERNAL_STITCH_SOUP_SOUP_REPAIRER_H
+
+// The cutting-and-stitching pipeline (Gueziec, Taubin, Lazarus, Horn) on flat
+// arrays: points as double triples, faces as index triples, one "slot" per
+// face side (3 * face + i is the side from corner i to corner i + 1). Edge
+// tables come from sorting (min, max) keys, never from per-face maps.
+//
+//   load       merge points (exact sort, then grid + union-find within epsilon),
+//              drop bad polygons, triangulate n-gons (ear clipping), drop
+//              degenerate and duplicate triangles
+//   pair       sort sides by edge; two sides: partners; more (a fin): pair
+//              them by angle around the edge (see pair_fin)
+//   orient     BFS spanning tree per component; a non-tree side pair that
+//              disagrees is cut (Moebius bands)
+//   split      corners glued across partnered sides form fans; each extra fan
+//              of a vertex gets a copy of the vertex
+//   stitch     optional: boundary sides whose ends lie within epsilon are glued
+//              (flipping the smaller component when needed), then pair, orient
+//              and split run again so that stitching never leaves a complex
+//              edge or vertex
+//   outward    optional: closed components get positive volume, inverted when
+//              nested at odd depth (ray parity)
+//   build      halfedges written directly from the partner table
+
+#include <mrepair/internal/stitch_soup/result.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Bbox_3.h>
+#include <CGAL/Box_intersection_d/Box_with_info_d.h>
+#include <CGAL/box_intersection_d.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/number_utils.h>
+
+#include <boost/graph/graph_traits.hpp>
+#include <boost/property_map/property_map.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <numeric>
+#include <type_traits>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace mrepair {
+namespace internal {
+
+using Soup_index = std::uint32_t;
+
+// Union-find whose root is the smallest index of its class (deterministic representatives).
+class Soup_union_find
+{
+  std::vector<Soup_index> parent_;
+
+public:
+  explicit Soup_union_find(std::size_t n = 0) : parent_(n) { std::iota(parent_.begin(), parent_.end(), Soup_index(0)); }
+  Soup_index find(Soup_index x)
+  {
+    while (parent_[x] != x) {
+      parent_[x] = parent_[parent_[x]];
+      x = parent_[x];
+    }
+    return x;
+  }
+  bool unite(Soup_index a, Soup_index b)
+  {
+    a = find(a);
+    b = find(b);
+    if (a == b) return false;
+    if (b < a) std::swap(a, b);
+    parent_[b] = a;
+    return true;
+  }
+};
+
+template <typename I>
+bool soup_index_is_valid(const I& id, std::size_t n)
+{
+  if constexpr (std::is_integral<I>::value) {
+    if constexpr (std::is_signed<I>::value) {
+      if (id < 0) return false;
+    }
+    return static_cast<unsigned long long>(id) < static_cast<unsigned long long>(n);
+  } else {
+    return false;
+  }
+}
+
+class Soup_repairer
+{
+public:
+  using Idx = Soup_index;
+  using Vec = std::array<double, 3>;
+  static constexpr Idx none = std::numeric_limits<Idx>::max();
+
+  struct Options
+  {
+    double merge_epsilon = 0;
+    double snap_epsilon = 0;
+    bool keep_two_sided = false;
+    bool orient_outward = true;
+  };
+
+  std::vector<Vec> P;                    // points (ids are indices)
+  std::vector<std::array<Idx, 3>> T;     // triangles
+  std::vector<Idx> partner;              // per slot: partner slot or none
+  std::vector<unsigned char> reversed;   // per triangle: reversed w.r.t. its input polygon
+  std::vector<Idx> comp;                 // per triangle: component (after orient)
+  std::vector<Idx> comp_faces;           // per component: face count
+  std::vector<unsigned char> comp_closed;
+
+  Soup_repair_result& r;
+  Options opt;
+  std::size_t fins_ = 0;  // complex edges met by the last pair_edges()
+  std::size_t cuts_ = 0;  // sides cut by the last orient()
+  // sides of fins and cut sides since the last pair_edges(): after splitting,
+  // only they can share a vertex pair with another side
+  std::vector<Idx> suspect_;
+
+  Soup_repairer(Soup_repair_result& result, const Options& o) : r(result), opt(o) {}
+
+  // ---------------------------------------------------------------- small helpers
+  static Idx src_corner(Idx s) { return s; }
+  static Idx dst_corner(Idx s) { return 3 * (s / 3) + (s % 3 + 1) % 3; }
+  Idx src(Idx s) const { return T[s / 3][s % 3]; }
+  Idx dst(Idx s) const { return T[s / 3][(s % 3 + 1) % 3]; }
+  static Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+  static double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+  static Vec cross(const Vec& a, const Vec& b)
+  {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  }
+  static double dist2(const Vec& a, const Vec& b)
+  {
+    Vec d = sub(a, b);
+    return dot(d, d);
+  }
+  static std::uint64_t edge_key(Idx a, Idx b)
+  {
+    if (b < a) std::swap(a, b);
+    return (std::uint64_t(a) << 32) | b;
+  }
+
+  // ---------------------------------------------------------------- load
+  // Reads the soup: returns false (with status set) when the input cannot be indexed.
+  template <class PointRange, class PolygonRange>
+  bool load(const PointRange& points, const PolygonRange& polygons)
+  {
+    const std::size_t n = static_cast<std::size_t>(std::distance(std::begin(points), std::end(points)));
+    r.points_in = n;
+    r.polygons_in = static_cast<std::size_t>(std::distance(std::begin(polygons), std::end(polygons)));
+    if (n >= std::size_t(none) / 4 || r.polygons_in >= std::size_t(none) / 8) {
+      r.status = Status::invalid_parameter;
+      r.message = "soup too large for 32-bit indices";
+      return false;
+    }
+    P.resize(n);
+    std::vector<unsigned char> finite(n, 1);
+    std::size_t k = 0;
+    for (const auto& p : points) {
+      Vec v{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+      P[k] = v;
+      if (!(std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]))) {
+        finite[k] = 0;
+        ++r.non_finite_points;
+      }
+      ++k;
+    }
+    std::vector<Idx> rep = merge_points(finite);
+
+    T.reserve(r.polygons_in + r.polygons_in / 4);
+    std::vector<Idx> poly;
+    std::vector<std::array<Idx, 3>> tris;
+    for (const auto& polygon : polygons) {
+      poly.clear();
+      bool bad_index = false, bad_point = false;
+      for (const auto& id : polygon) {
+        if (!soup_index_is_valid(id, n)) {
+          bad_index = true;
+          continue;
+        }
+        std::size_t v = static_cast<std::size_t>(id);
+        if (!finite[v]) bad_point = true;
+        poly.push_back(rep[v]);
+      }
+      if (bad_index) {
+        ++r.faces_in;
+        ++r.removed_invalid_index;
+        continue;
+      }
+      if (bad_point) {
+        ++r.faces_in;
+        ++r.removed_non_finite;
+        continue;
+      }
+      // zero-length sides (repeated consecutive indices) are dropped, not the polygon
+      std::size_t m = 0;
+      for (std::size_t i = 0; i < poly.size(); ++i)
+        if (m == 0 || poly[m - 1] != poly[i]) poly[m++] = poly[i];
+      while (m > 1 && poly[m - 1] == poly[0]) --m;
+      poly.resize(m);
+      if (m < 3) {
+        ++r.faces_in;
+        ++r.removed_degenerate_index;
+        continue;
+      }
+      if (m == 3) {
+        add_triangle(poly[0], poly[1], poly[2]);
+      } else {
+        ++r.polygons_triangulated;
+        tris.clear();
+        triangulate(poly, tris);
+        for (const auto& t : tris) add_triangle(t[0], t[1], t[2]);
+      }
+    }
+    remove_duplicates();
+    reversed.assign(T.size(), 0);
+    std::size_t distinct = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (finite[i] && rep[i] == i) ++distinct;
+    std::size_t used = compact_points();
+    r.points_unreferenced = distinct - used;
+    return true;
+  }
+
+  std::vector<Idx> merge_points(const std::vector<unsigned char>& finite)
+  {
+    const std::size_t n = P.size();
+    std::vector<Idx> rep(n);
+    std::iota(rep.begin(), rep.end(), Idx(0));
+    // exact merging by open addressing on the coordinate bits (-0 == +0):
+    // linear, and the first (smallest) index of a location is its representative
+    std::vector<Idx> order;
+    order.reserve(n);
+    for (std::size_t i = 0; i < n; ++i)
+      if (finite[i]) order.push_back(Idx(i));
+    std::size_t cap = 16;
+    while (cap < 2 * order.size()) cap <<= 1;
+    std::vector<Idx> table(cap, none);
+    auto bits = [](double d) {
+      d += 0.0;  // -0.0 becomes +0.0
+      std::uint64_t u;
+      std::memcpy(&u, &d, sizeof u);
+      return u;
+    };
+    for (Idx i : order) {
+      const Vec& p = P[i];
+      std::uint64_t h = bits(p[0]) * 0x9E3779B97F4A7C15ull;
+      h = (h ^ (h >> 29)) + bits(p[1]) * 0xC2B2AE3D27D4EB4Full;
+      h = (h ^ (h >> 31)) + bits(p[2]) * 0x165667B19E3779F9ull;
+      h ^= h >> 32;
+      std::size_t slot = std::size_t(h) & (cap - 1);
+      while (table[slot] != none && P[table[slot]] != p) slot = (slot + 1) & (cap - 1);
+      if (table[slot] == none)
+        table[slot] = i;
+      else
+        rep[i] = table[slot];
+    }
+    std::vector<Idx>().swap(table);
+    if (opt.merge_epsilon > 0) {
+      std::vector<Idx> reps;
+      for (std::size_t i = 0; i < order.size(); ++i)
+        if (rep[order[i]] == order[i]) reps.push_back(order[i]);
+      Soup_union_find uf(n);
+      near_pairs(reps, opt.merge_epsilon, [&](Idx a, Idx b) { uf.unite(a, b); });
+      for (Idx i : order) rep[i] = uf.find(rep[i]);
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (finite[i] && rep[i] != i) ++r.points_merged;
+    return rep;
+  }
+
+  // Grid cell: eps, or larger when coordinates / eps would overflow 64-bit
+  // cell indices (a larger cell still finds every pair within eps).
+  double cell_size(double eps) const
+  {
+    double m = 0;
+    for (const Vec& p : P)
+      for (double x : p)
+        if (std::isfinite(x)) m = std::max(m, std::abs(x));
+    return std::max(eps, m * 1e-15);
+  }
+
+  // Calls f(a, b) for every pair of ids (a != b) whose points lie within eps, by a grid of cell eps.
+  template <class F>
+  void near_pairs(const std::vector<Idx>& ids, double eps, F f)
+  {
+    struct Cell_entry
+    {
+      std::array<std::int64_t, 3> c;
+      Idx id;
+    };
+    const double cell = cell_size(eps);
+    auto cell_of = [cell](const Vec& p) {
+      std::array<std::int64_t, 3> c;
+      for (int k = 0; k < 3; ++k) c[k] = static_cast<std::int64_t>(std::floor(p[k] / cell));
+      return c;
+    };
+    std::vector<Cell_entry> cells(ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) cells[i] = {cell_of(P[ids[i]]), ids[i]};
+    std::sort(cells.begin(), cells.end(),
+              [](const Cell_entry& a, const Cell_entry& b) { return a.c < b.c || (a.c == b.c && a.id < b.id); });
+    struct Hash
+    {
+      std::size_t operator()(const std::array<std::int64_t, 3>& c) const
+      {
+        std::uint64_t h = std::uint64_t(c[0]) * 0x9E3779B97F4A7C15ull;
+        h ^= std::uint64_t(c[1]) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+        h ^= std::uint64_t(c[2]) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+        return std::size_t(h);
+      }
+    };
+    std::unordered_map<std::array<std::int64_t, 3>, std::pair<std::size_t, std::size_t>, Hash> range;
+    range.reserve(cells.size());
+    for (std::size_t i = 0; i < cells.size();) {
+      std::size_t j = i;
+      while (j < cells.size() && cells[j].c == cells[i].c) ++j;
+      range.emplace(cells[i].c, std::make_pair(i, j));
+      i = j;
+    }
+    const double eps2 = eps * eps;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const auto& c = cells[i].c;
+      const Idx a = cells[i].id;
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz) {
+            auto it = range.find({c[0] + dx, c[1] + dy, c[2] + dz});
+            if (it == range.end()) continue;
+            for (std::size_t j = it->second.first; j < it->second.second; ++j) {
+              const Idx b = cells[j].id;
+              if (b <= a) continue;  // each pair once
+              if (dist2(P[a], P[b]) <= eps2) f(a, b);
+            }
+          }
+    }
+  }
+
+  void add_triangle(Idx a, Idx b, Idx c)
+  {
+    ++r.faces_in;
+    if (a == b || b == c || a == c) {
+      ++r.removed_degenerate_index;
+      return;
+    }
+    using K = CGAL::Epick;
+    K::Point_3 pa(P[a][0], P[a][1], P[a][2]), pb(P[b][0], P[b][1], P[b][2]),
+        pc(P[c][0], P[c][1], P[c][2]);
+    if (K().collinear_3_object()(pa, pb, pc)) {
+      ++r.removed_collinear;
+      return;
+    }
+    T.push_back({a, b, c});
+  }
+
+  // Ear clipping in the plane that drops the largest coordinate of the Newell
+  // normal; exact 2D orientation on the projected coordinates. A polygon with
+  // no ear left (self-overlapping, all collinear) is finished as a fan, whose
+  // collinear triangles are then dropped and counted.
+  void triangulate(const std::vector<Idx>& poly, std::vector<std::array<Idx, 3>>& out)
+  {
+    using K = CGAL::Epick;
+    const std::size_t m = poly.size();
+    Vec nrm{0, 0, 0};
+    for (std::size_t i = 0; i < m; ++i) {
+      const Vec& c = P[poly[i]];
+      const Vec& d = P[poly[(i + 1) % m]];
+      nrm[0] += (c[1] - d[1]) * (c[2] + d[2]);
+      nrm[1] += (c[2] - d[2]) * (c[0] + d[0]);
+      nrm[2] += (c[0] - d[0]) * (c[1] + d[1]);
+    }
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::abs(nrm[k]) > std::abs(nrm[axis])) axis = k;
+    int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    if (nrm[axis] < 0) std::swap(u, v);  // the polygon is counterclockwise in (u, v)
+    std::vector<K::Point_2> q(m);
+    for (std::size_t i = 0; i < m; ++i) q[i] = K::Point_2(P[poly[i]][u], P[poly[i]][v]);
+    auto orient = K().orientation_2_object();
+    std::vector<std::size_t> ring(m);
+    std::iota(ring.begin(), ring.end(), std::size_t(0));
+    while (ring.size() > 3) {
+      const std::size_t s = ring.size();
+      bool clipped = false;
+      for (std::size_t k = 0; k < s && !clipped; ++k) {
+        std::size_t a = ring[(k + s - 1) % s], b = ring[k], c = ring[(k + 1) % s];
+        if (orient(q[a], q[b], q[c]) != CGAL::LEFT_TURN) continue;
+        bool blocked = false;
+        for (std::size_t j = 0; j < s && !blocked; ++j) {
+          std::size_t x = ring[j];
+          if (x == a || x == b || x == c) continue;
+          if (poly[x] == poly[a] || poly[x] == poly[b] || poly[x] == poly[c]) continue;
+          if (orient(q[a], q[b], q[x]) != CGAL::RIGHT_TURN && orient(q[b], q[c], q[x]) != CGAL::RIGHT_TURN &&
+              orient(q[c], q[a], q[x]) != CGAL::RIGHT_TURN)
+            blocked = true;
+        }
+        if (blocked) continue;
+        out.push_back({poly[a], poly[b], poly[c]});
+        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+        clipped = true;
+      }
+      if (!clipped) {
+        for (std::size_t k = 1; k + 1 < ring.size(); ++k)
+          out.push_back({poly[ring[0]], poly[ring[k]], poly[ring[k + 1]]});
+        return;
+      }
+    }
+    out.push_back({poly[ring[0]], poly[ring[1]], poly[ring[2]]});
+  }
+
+  // Same vertex set: keep the first face (and with keep_two_sided, the first of
+  // the opposite orientation too), in input order.
+  void remove_duplicates()
+  {
+    struct Key
+    {
+      std::uint64_t hi;
+      Idx lo, t;
+    };
+    const std::size_t F = T.size();
+    std::vector<Key> keys(F);
+    std::vector<unsigned char> parity(F);
+    for (std::size_t t = 0; t < F; ++t) {
+      std::array<Idx, 3> s = T[t];
+      int mi = 0;
+      if (s[1] < s[mi]) mi = 1;
+      if (s[2] < s[mi]) mi = 2;
+      Idx a = s[mi], b = s[(mi + 1) % 3], c = s[(mi + 2) % 3];
+      parity[t] = b < c;
+      if (c < b) std::swap(b, c);
+      keys[t] = {(std::uint64_t(a) << 32) | b, c, Idx(t)};
+    }
+    {  // counting sort on the smallest vertex, then each bucket by (b, c, t)
+      std::vector<Idx> start(P.size() + 1, 0);
+      for (const Key& k : keys) ++start[(k.hi >> 32) + 1];
+      for (std::size_t v = 0; v < P.size(); ++v) start[v + 1] += start[v];
+      std::vector<Key> sorted(F);
+      std::vector<Idx> pos(start.begin(), start.end() - 1);
+      for (const Key& k : keys) sorted[pos[k.hi >> 32]++] = k;
+      keys.swap(sorted);
+      for (std::size_t v = 0; v < P.size(); ++v)
+        if (start[v + 1] - start[v] > 1)
+          sort_small(keys.begin() + start[v], keys.begin() + start[v + 1], [](const Key& x, const Key& y) {
+            if (x.hi != y.hi) return x.hi < y.hi;
+            if (x.lo != y.lo) return x.lo < y.lo;
+            return x.t < y.t;
+          });
+    }
+    std::vector<unsigned char> keep(F, 1);
+    for (std::size_t i = 0; i < F;) {
+      std::size_t j = i + 1;
+      while (j < F && keys[j].hi == keys[i].hi && keys[j].lo == keys[i].lo) ++j;
+      bool seen[2] = {false, false};
+      bool any = false;
+      for (std::size_t k = i; k < j; ++k) {
+        Idx t = keys[k].t;
+        unsigned char p = parity[t];
+        if (!any || (opt.keep_two_sided && !seen[p])) {
+          seen[p] = true;
+          any = true;
+        } else {
+          keep[t] = 0;
+          ++r.removed_duplicate;
+        }
+      }
+      i = j;
+    }
+    std::size_t w = 0;
+    for (std::size_t t = 0; t < F; ++t)
+      if (keep[t]) T[w++] = T[t];
+    T.resize(w);
+  }
+
+  // Drops points used by no face; keeps the order of the others. Returns how many remain.
+  std::size_t compact_points()
+  {
+    std::vector<Idx> id(P.size(), none);
+    for (const auto& t : T)
+      for (Idx v : t) id[v] = 0;
+    Idx w = 0;
+    for (std::size_t i = 0; i < P.size(); ++i)
+      if (id[i] != none) {
+        id[i] = w;
+        P[w++] = P[i];
+      }
+    P.resize(w);
+    for (auto& t : T)
+      for (Idx& v : t) v = id[v];
+    return w;
+  }
+
+  // ---------------------------------------------------------------- pair
+  struct Side_key
+  {
+    std::uint64_t key;
+    Idx slot;
+  };
+
+  // Sides ordered by (edge key, slot): a counting sort on the smaller vertex,
+  // then a sort of each (small) bucket; linear in practice, no comparison sort
+  // over all sides.
+  std::vector<Side_key> sorted_sides() const
+  {
+    const std::size_t S = 3 * T.size(), V = P.size();
+    std::vector<Idx> start(V + 1, 0);
+    for (std::size_t s = 0; s < S; ++s) ++start[std::min(src(Idx(s)), dst(Idx(s))) + 1];
+    for (std::size_t v = 0; v < V; ++v) start[v + 1] += start[v];
+    std::vector<Side_key> hes(S);
+    {
+      std::vector<Idx> pos(start.begin(), start.end() - 1);
+      for (std::size_t s = 0; s < S; ++s) {
+        const Idx a = src(Idx(s)), b = dst(Idx(s));
+        hes[pos[std::min(a, b)]++] = {edge_key(a, b), Idx(s)};
+      }
+    }
+    for (std::size_t v = 0; v < V; ++v)
+      if (start[v + 1] - start[v] > 1)
+        sort_small(hes.begin() + start[v], hes.begin() + start[v + 1],
+                   [](const Side_key& a, const Side_key& b) { return a.key < b.key || (a.key == b.key && a.slot < b.slot); });
+    return hes;
+  }
+
+  // insertion sort for the short buckets, std::sort for long ones
+  template <class It, class Less>
+  static void sort_small(It first, It last, Less less)
+  {
+    if (last - first > 32) {
+      std::sort(first, last, less);
+      return;
+    }
+    for (It i = first + 1; i < last; ++i) {
+      auto x = *i;
+      It j = i;
+      for (; j > first && less(x, *(j - 1)); --j) *j = *(j - 1);
+      *j = x;
+    }
+  }
+
+  // Fills `partner`; returns the number of complex edges.
+  std::size_t pair_edges()
+  {
+    const std::size_t S = 3 * T.size();
+    partner.assign(S, none);
+    suspect_.clear();
+    std::vector<Side_key> hes = sorted_sides();
+    std::size_t complex = 0;
+    std::vector<Idx> run;
+    for (std::size_t i = 0; i < S;) {
+      std::size_t j = i + 1;
+      while (j < S && hes[j].key == hes[i].key) ++j;
+      if (j - i == 2) {
+        partner[hes[i].slot] = hes[i + 1].slot;
+        partner[hes[i + 1].slot] = hes[i].slot;
+      } else if (j - i > 2) {
+        ++complex;
+        run.clear();
+        for (std::size_t k = i; k < j; ++k) run.push_back(hes[k].slot);
+        suspect_.insert(suspect_.end(), run.begin(), run.end());
+        pair_fin(hes[i].key, run);
+      }
+      i = j;
+    }
+    fins_ = complex;
+    return complex;
+  }
+
+  // Pairs the faces around a complex edge (u, v). Each face is a half-plane at
+  // an angle around the axis u->v; its normal points towards increasing angle
+  // when it runs u->v (dir +1). Pass 1 pairs a dir -1 face with a dir +1 face
+  // met next counterclockwise (the wedge between them is the inside of a solid
+  // bounded by both, and neighbours never cross), smallest gap first, so that
+  // consistently oriented solids and sheets keep their faces. Pass 2 pairs what
+  // is left by the flattest continuation, consistent pairs first. Coincident
+  // faces (two-sided sheets) never pair with each other. Faces left over are
+  // cut off along this edge (they become boundary).
+  void pair_fin(std::uint64_t key, const std::vector<Idx>& run)
+  {
+    const std::size_t k = run.size();
+    if (k > 256) return;  // pathological fan: cut every face apart
+    const Idx u = Idx(key >> 32), v = Idx(key & 0xffffffffu);
+    Vec d = sub(P[v], P[u]);
+    double len = std::sqrt(dot(d, d));
+    if (len > 0)
+      for (double& x : d) x /= len;
+    else
+      d = {1, 0, 0};
+    int small = 0;
+    for (int c = 1; c < 3; ++c)
+      if (std::abs(d[c]) < std::abs(d[small])) small = c;
+    Vec ax{0, 0, 0};
+    ax[small] = 1;
+    Vec e1 = cross(d, ax);
+    double l1 = std::sqrt(dot(e1, e1));
+    for (double& x : e1) x /= l1;
+    Vec e2 = cross(d, e1);
+    const double two_pi = 2 * 3.14159265358979323846;
+    std::vector<double> ang(k);
+    std::vector<int> dir(k);
+    for (std::size_t i = 0; i < k; ++i) {
+      Idx s = run[i];
+      Idx w = T[s / 3][(s % 3 + 2) % 3];
+      Vec rr = sub(P[w], P[u]);
+      ang[i] = std::atan2(dot(rr, e2), dot(rr, e1));
+      dir[i] = (src(s) == u) ? 1 : -1;
+    }
+    const double tiny = 1e-12;
+    struct Cand
+    {
+      double score;
+      std::size_t a, b;
+    };
+    std::vector<Cand> cand;
+    for (std::size_t i = 0; i < k; ++i) {
+      if (dir[i] != -1) continue;
+      for (std::size_t j = 0; j < k; ++j) {
+        if (dir[j] != 1) continue;
+        double gap = ang[j] - ang[i];
+        if (gap < 0) gap += two_pi;
+        if (gap <= tiny || gap >= two_pi - tiny) continue;
+        cand.push_back({gap, i, j});
+      }
+    }
+    std::vector<unsigned char> used(k, 0);
+    auto greedy = [&]() {
+      std::sort(cand.begin(), cand.end(), [](const Cand& x, const Cand& y) {
+        return x.score < y.score || (x.score == y.score && (x.a < y.a || (x.a == y.a && x.b < y.b)));
+      });
+      for (const Cand& c : cand) {
+        if (used[c.a] || used[c.b]) continue;
+        used[c.a] = used[c.b] = 1;
+        partner[run[c.a]] = run[c.b];
+        partner[run[c.b]] = run[c.a];
+      }
+    };
+    greedy();
+    cand.clear();
+    for (std::size_t i = 0; i < k; ++i) {
+      if (used[i]) continue;
+      for (std::size_t j = i + 1; j < k; ++j) {
+        if (used[j]) continue;
+        double diff = std::abs(ang[j] - ang[i]);
+        if (diff > two_pi / 2) diff = two_pi - diff;
+        if (diff <= tiny) continue;
+        double score = std::abs(two_pi / 2 - diff) + (dir[i] == dir[j] ? 10.0 : 0.0);
+        cand.push_back({score, i, j});
+      }
+    }
+    greedy();
+  }
+
+  // ---------------------------------------------------------------- orient
+  // Reverses the flagged triangles and renumbers the partner table (side i of a
+  // reversed triangle becomes side 2 - i).
+  void apply_flips(const std::vector<unsigned char>& flip)
+  {
+    const std::size_t S = 3 * T.size();
+    auto m = [&](Idx s) { return flip[s / 3] ? Idx(3 * (s / 3) + (2 - s % 3)) : s; };
+    std::vector<Idx> np(S, none);
+    for (std::size_t s = 0; s < S; ++s)
+      np[m(Idx(s))] = partner[s] == none ? none : m(partner[s]);
+    partner.swap(np);
+    for (Idx& s : suspect_) s = m(s);
+    for (std::size_t t = 0; t < T.size(); ++t)
+      if (flip[t]) {
+        std::swap(T[t][1], T[t][2]);
+        reversed[t] ^= 1;
+      }
+  }
+
+  // Orients every component by a BFS spanning tree, cutting disagreeing
+  // non-tree sides; each open component then keeps the orientation of most of
+  // its input faces. Fills comp, comp_faces, comp_closed.
+  void orient()
+  {
+    const std::size_t F = T.size();
+    comp.assign(F, none);
+    cuts_ = 0;
+    comp_faces.clear();
+    comp_closed.clear();
+    std::vector<unsigned char> flip(F, 0);
+    std::vector<Idx> queue;
+    queue.reserve(F);
+    for (std::size_t seed = 0; seed < F; ++seed) {
+      if (comp[seed] != none) continue;
+      const Idx c = Idx(comp_faces.size());
+      comp_faces.push_back(0);
+      comp_closed.push_back(1);
+      queue.clear();
+      queue.push_back(Idx(seed));
+      comp[seed] = c;
+      for (std::size_t head = 0; head < queue.size(); ++head) {
+        const Idx t = queue[head];
+        ++comp_faces[c];
+        for (Idx i = 0; i < 3; ++i) {
+          const Idx s = 3 * t + i, p = partner[s];
+          if (p == none) continue;
+          const Idx g = p / 3;
+          const unsigned char want = flip[t] ^ (src(s) == src(p) ? 1 : 0);
+          if (comp[g] == none) {
+            comp[g] = c;
+            flip[g] = want;
+            queue.push_back(g);
+          } else if (flip[g] != want) {
+            partner[s] = partner[p] = none;
+            suspect_.push_back(s);
+            suspect_.push_back(p);
+            ++r.edges_cut_nonorientable;
+            ++cuts_;
+          }
+        }
+      }
+    }
+    // keep the input orientation of the majority of each component
+    std::vector<std::size_t> against(comp_faces.size(), 0);
+    for (std::size_t t = 0; t < F; ++t)
+      if (flip[t] ^ reversed[t]) ++against[comp[t]];
+    for (std::size_t t = 0; t < F; ++t)
+      if (2 * against[comp[t]] > comp_faces[comp[t]]) flip[t] ^= 1;
+    apply_flips(flip);
+    for (std::size_t s = 0; s < 3 * F; ++s)
+      if (partner[s] == none) comp_closed[comp[s / 3]] = 0;
+  }
+
+  bool unpartner(Idx s)
+  {
+    if (partner[s] == none) return false;
+    suspect_.push_back(s);
+    suspect_.push_back(partner[s]);
+    partner[partner[s]] = none;
+    partner[s] = none;
+    return true;
+  }
+
+  // ---------------------------------------------------------------- split
+  // Gives each fan of faces around a vertex its own vertex. Then any vertex
+  // pair still joined by more than one edge (two-sided sheets whose interior
+  // edge joins two border vertices, closed non-orientable pieces) has its
+  // sides cut and the fans are recomputed, until every vertex pair has at most
+  // one edge: the output is then a polygon mesh in the PMP sense.
+  // Returns true when sides were cut (components may have changed).
+  bool split_vertices(std::vector<unsigned char>& complex_flag)
+  {
+    bool cut_any = false;
+    const std::size_t F = T.size();
+    const std::size_t S = 3 * F;
+    for (;;) {  // ends: every further round removes at least one partner
+      Soup_union_find uf(S);
+      for (std::size_t s = 0; s < S; ++s) {
+        const Idx p = partner[s];
+        if (p == none || p < s) continue;
+        const Idx a = src(Idx(s));
+        const Idx ga = (T[p / 3][p % 3] == a) ? p : dst_corner(p);
+        const Idx gb = (ga == p) ? dst_corner(p) : p;
+        uf.unite(Idx(s), ga);
+        uf.unite(dst_corner(Idx(s)), gb);
+      }
+      std::vector<Idx> root_id(S, none);
+      std::vector<unsigned char> claimed(P.size(), 0);
+      complex_flag.resize(P.size(), 0);
+      const std::size_t n0 = P.size();
+      for (std::size_t c = 0; c < S; ++c) {
+        const Idx root = uf.find(Idx(c));
+        if (root_id[root] != none) continue;
+        const Idx v = T[c / 3][c % 3];
+        if (!claimed[v]) {
+          claimed[v] = 1;
+          root_id[root] = v;
+        } else {
+          root_id[root] = Idx(P.size());
+          Vec pv = P[v];
+          P.push_back(pv);
+          ++r.vertices_duplicated;
+          if (v < n0 && !complex_flag[v]) {
+            complex_flag[v] = 1;
+            ++r.complex_vertices;
+          }
+        }
+      }
+      for (std::size_t c = 0; c < S; ++c) T[c / 3][c % 3] = root_id[uf.find(Idx(c))];
+      complex_flag.resize(P.size(), 1);  // copies are not counted again
+
+      // two sides on one vertex pair that are not partners need a fin or a cut
+      if (fins_ == 0 && cuts_ == 0) break;
+      bool again = false;
+      std::sort(suspect_.begin(), suspect_.end());
+      suspect_.erase(std::unique(suspect_.begin(), suspect_.end()), suspect_.end());
+      std::vector<Side_key> hes(suspect_.size());
+      for (std::size_t k = 0; k < suspect_.size(); ++k)
+        hes[k] = {edge_key(src(suspect_[k]), dst(suspect_[k])), suspect_[k]};
+      std::sort(hes.begin(), hes.end(), [](const Side_key& a, const Side_key& b) {
+        return a.key < b.key || (a.key == b.key && a.slot < b.slot);
+      });
+      const std::size_t H = hes.size();
+      for (std::size_t i = 0; i < H;) {
+        std::size_t j = i + 1;
+        while (j < H && hes[j].key == hes[i].key) ++j;
+        bool ok = (j - i == 1) || (j - i == 2 && partner[hes[i].slot] == hes[i + 1].slot);
+        if (!ok) {
+          bool cut = false;
+          for (std::size_t k = i; k < j; ++k) cut = unpartner(hes[k].slot) || cut;
+          if (!cut) {
+            // only boundary sides join these two vertices (a slit, which CGAL
+            // rejects as a two-edge hole): open the fan of the first face at
+            // one end so that the vertex splits in the next round
+            const Idx s = hes[i].slot, f = s / 3;
+            cut = unpartner(3 * f + (s % 3 + 2) % 3) || unpartner(3 * f + (s % 3 + 1) % 3);
+          }
+          again = again || cut;
+        }
+        i = j;
+      }
+      cut_any = cut_any || again;
+      if (!again) break;
+    }
+    return cut_any;
+  }
+
+  // ---------------------------------------------------------------- stitch
+  // Glues boundary sides whose ends lie within eps. Returns true if any vertex was merged.
+  bool stitch(double eps)
+  {
+    const std::size_t S = 3 * T.size();
+    std::vector<Idx> bnd;
+    for (std::size_t s = 0; s < S; ++s)
+      if (partner[s] == none) bnd.push_back(Idx(s));
+    if (bnd.size() < 2) return false;
+
+    // grid over the source points of boundary sides
+    struct Entry
+    {
+      std::array<std::int64_t, 3> c;
+      Idx slot;
+    };
+    const double cell = cell_size(eps);
+    auto cell_of = [cell](const Vec& p) {
+      std::array<std::int64_t, 3> c;
+      for (int k = 0; k < 3; ++k) c[k] = static_cast<std::int64_t>(std::floor(p[k] / cell));
+      return c;
+    };
+    std::vector<Entry> cells(bnd.size());
+    for (std::size_t i = 0; i < bnd.size(); ++i) cells[i] = {cell_of(P[src(bnd[i])]), bnd[i]};
+    std::sort(cells.begin(), cells.end(),
+              [](const Entry& a, const Entry& b) { return a.c < b.c || (a.c == b.c && a.slot < b.slot); });
+    auto lower = [&](const std::array<std::int64_t, 3>& c) {
+      return std::lower_bound(cells.begin(), cells.end(), c,
+                              [](const Entry& e, const std::array<std::int64_t, 3>& x) { return e.c < x; });
+    };
+    struct Cand
+    {
+      double score;
+      Idx a, b;
+      bool same;
+    };
+    std::vector<Cand> cand;
+    const double eps2 = eps * eps;
+    auto scan = [&](Idx s, const Vec& near_src, const Vec& near_dst, bool same) {
+      auto c = cell_of(near_src);
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz) {
+            std::array<std::int64_t, 3> cc{c[0] + dx, c[1] + dy, c[2] + dz};
+            for (auto it = lower(cc); it != cells.end() && it->c == cc; ++it) {
+              const Idx h = it->slot;
+              if (h <= s || h / 3 == s / 3) continue;  // each pair once, never within a face
+              const double d1 = dist2(P[src(h)], near_src), d2 = dist2(P[dst(h)], near_dst);
+              if (d1 > eps2 || d2 > eps2) continue;
+              // an edge that was cut on purpose (fin, Moebius, multi-edge) stays cut
+              if (edge_key(src(h), dst(h)) == edge_key(src(s), dst(s))) continue;
+              cand.push_back({std::max(d1, d2), s, h, same});
+            }
+          }
+    };
+    for (Idx s : bnd) {
+      scan(s, P[dst(s)], P[src(s)], false);  // opposite direction: glues as is
+      scan(s, P[src(s)], P[dst(s)], true);   // same direction: one side must flip
+    }
+    if (cand.empty()) return false;
+    std::sort(cand.begin(), cand.end(), [](const Cand& x, const Cand& y) {
+      return x.score < y.score || (x.score == y.score && (x.a < y.a || (x.a == y.a && x.b < y.b)));
+    });
+    std::vector<unsigned char> matched(S, 0);
+    std::vector<Cand> acc;
+    for (const Cand& c : cand) {
+      if (matched[c.a] || matched[c.b]) continue;
+      matched[c.a] = matched[c.b] = 1;
+      acc.push_back(c);
+    }
+
+    // which components flip: BFS over components from the largest, so that
+    // of two glued components the smaller one is flipped
+    const std::size_t C = comp_faces.size();
+    std::vector<std::vector<std::pair<Idx, Idx>>> adj(C);  // (other component, pair id)
+    std::vector<unsigned char> ok(acc.size(), 1);
+    for (std::size_t i = 0; i < acc.size(); ++i) {
+      Idx ca = comp[acc[i].a / 3], cb = comp[acc[i].b / 3];
+      if (ca == cb) {
+        if (acc[i].same) ok[i] = 0;  // would need a Moebius twist
+        continue;
+      }
+      adj[ca].push_back({cb, Idx(i)});
+      adj[cb].push_back({ca, Idx(i)});
+    }
+    std::vector<Idx> corder(C);
+    std::iota(corder.begin(), corder.end(), Idx(0));
+    std::stable_sort(corder.begin(), corder.end(), [&](Idx x, Idx y) { return comp_faces[x] > comp_faces[y]; });
+    std::vector<unsigned char> cflip(C, 2);
+    std::vector<Idx> queue;
+    for (Idx root : corder) {
+      if (cflip[root] != 2) continue;
+      cflip[root] = 0;
+      queue.assign(1, root);
+      for (std::size_t h = 0; h < queue.size(); ++h) {
+        Idx c = queue[h];
+        for (auto [o, pi] : adj[c]) {
+          unsigned char want = cflip[c] ^ (acc[pi].same ? 1 : 0);
+          if (cflip[o] == 2) {
+            cflip[o] = want;
+            queue.push_back(o);
+          } else if (cflip[o] != want)
+            ok[pi] = 0;
+        }
+      }
+      // of the glued group, flip the side with fewer faces
+      std::size_t flipped = 0, total = 0;
+      for (Idx c : queue) {
+        total += comp_faces[c];
+        if (cflip[c]) flipped += comp_faces[c];
+      }
+      if (2 * flipped > total)
+        for (Idx c : queue) cflip[c] ^= 1;
+    }
+    // vertex pairs to merge
+    std::vector<std::array<Idx, 4>> merges;  // a, a', b, b' ; pair id implicit by index
+    std::vector<std::size_t> merge_pair;
+    for (std::size_t i = 0; i < acc.size(); ++i) {
+      if (!ok[i]) continue;
+      const Idx a = acc[i].a, b = acc[i].b;
+      if (acc[i].same)
+        merges.push_back({src(a), src(b), dst(a), dst(b)});
+      else
+        merges.push_back({src(a), dst(b), dst(a), src(b)});
+      merge_pair.push_back(i);
+    }
+    // never merge two corners of one face: drop the merges that would, and
+    // retry; only the faces around merged vertices are looked at
+    std::vector<Idx> local(P.size(), none), verts;
+    for (const auto& mg : merges)
+      for (Idx v : mg)
+        if (local[v] == none) {
+          local[v] = Idx(verts.size());
+          verts.push_back(v);
+        }
+    std::vector<Idx> touched;
+    for (std::size_t t = 0; t < T.size(); ++t)
+      if (local[T[t][0]] != none || local[T[t][1]] != none || local[T[t][2]] != none) touched.push_back(Idx(t));
+    std::vector<unsigned char> live(merges.size(), 1);
+    std::vector<Idx> lroot(verts.size());
+    auto root_of = [&](Idx v) { return local[v] == none ? none - 1 - v : lroot[local[v]]; };  // unmerged: itself
+    for (int round = 0;; ++round) {
+      Soup_union_find uf(verts.size());
+      for (std::size_t i = 0; i < merges.size(); ++i)
+        if (live[i]) {
+          uf.unite(local[merges[i][0]], local[merges[i][1]]);
+          uf.unite(local[merges[i][2]], local[merges[i][3]]);
+        }
+      for (std::size_t k = 0; k < verts.size(); ++k) lroot[k] = uf.find(Idx(k));
+      std::vector<unsigned char> bad(verts.size(), 0);
+      bool any_bad = false;
+      for (Idx t : touched) {
+        const Idx x = root_of(T[t][0]), y = root_of(T[t][1]), z = root_of(T[t][2]);
+        if (x == y || y == z || x == z) {
+          any_bad = true;
+          bad[(x == y || x == z) ? x : y] = 1;  // a repeated root is always a merged vertex
+        }
+      }
+      if (!any_bad) break;
+      bool changed = false;
+      for (std::size_t i = 0; i < merges.size(); ++i)
+        if (live[i] && (bad[lroot[local[merges[i][0]]]] || bad[lroot[local[merges[i][2]]]])) {
+          live[i] = 0;
+          changed = true;
+        }
+      if (!changed || round > 16) {
+        std::fill(live.begin(), live.end(), 0);
+        for (std::size_t k = 0; k < verts.size(); ++k) lroot[k] = Idx(k);
+        break;
+      }
+    }
+    std::vector<Idx> root(P.size());
+    for (std::size_t v = 0; v < P.size(); ++v) root[v] = local[v] == none ? Idx(v) : verts[lroot[local[v]]];
+    bool any = false;
+    for (unsigned char l : live) any = any || l;
+    if (!any) return false;
+    // flip the components of the surviving pairs, then merge
+    std::vector<unsigned char> flip(T.size(), 0);
+    std::vector<unsigned char> comp_used(C, 0);
+    for (std::size_t i = 0; i < merges.size(); ++i)
+      if (live[i]) {
+        comp_used[comp[acc[merge_pair[i]].a / 3]] = 1;
+        comp_used[comp[acc[merge_pair[i]].b / 3]] = 1;
+      }
+    for (std::size_t c = 0; c < C; ++c)
+      if (comp_used[c] && cflip[c] == 1) ++r.components_flipped;
+    for (std::size_t t = 0; t < T.size(); ++t) flip[t] = comp_used[comp[t]] && cflip[comp[t]] == 1;
+    apply_flips(flip);
+    for (auto& t : T)
+      for (Idx& v : t) v = root[v];
+    return true;
+  }
+
+  // ---------------------------------------------------------------- outward
+  // Closed components get positive volume at even nesting depth, negative at
+  // odd depth (the orient_to_bound_a_volume convention). Depth is the parity
+  // of crossings of a ray from a point of the component with other closed
+  // components (fixed generic direction; a ray through an edge is unlikely but
+  // would miscount).
+  void orient_outward()
+  {
+    const std::size_t F = T.size();
+    const std::size_t C = comp_faces.size();
+    std::vector<Idx> start(C + 1, 0), order(F);
+    for (std::size_t t = 0; t < F; ++t) ++start[comp[t] + 1];
+    for (std::size_t c = 0; c < C; ++c) start[c + 1] += start[c];
+    {
+      std::vector<Idx> pos(start.begin(), start.end() - 1);
+      for (std::size_t t = 0; t < F; ++t) order[pos[comp[t]]++] = Idx(t);
+    }
+    std::vector<Idx> closed;
+    std::vector<double> vol(C, 0);
+    std::vector<std::array<double, 6>> box(C);
+    for (std::size_t c = 0; c < C; ++c) {
+      if (!comp_closed[c]) continue;
+      const Vec o = P[T[order[start[c]]][0]];
+      double v6 = 0;
+      std::array<double, 6> b{o[0], o[1], o[2], o[0], o[1], o[2]};
+      for (Idx k = start[c]; k < start[c + 1]; ++k) {
+        const auto& t = T[order[k]];
+        Vec p0 = sub(P[t[0]], o), p1 = sub(P[t[1]], o), p2 = sub(P[t[2]], o);
+        v6 += dot(p0, cross(p1, p2));
+        for (Idx vi : t)
+          for (int a = 0; a < 3; ++a) {
+            b[a] = std::min(b[a], P[vi][a]);
+            b[a + 3] = std::max(b[a + 3], P[vi][a]);
+          }
+      }
+      vol[c] = v6;
+      box[c] = b;
+      if (v6 != 0) closed.push_back(Idx(c));
+    }
+    r.closed_components = 0;
+    for (std::size_t c = 0; c < C; ++c) r.closed_components += comp_closed[c];
+    if (!opt.orient_outward || closed.empty()) return;
+    const Vec dir{0.5773502691896258, 0.4082482904638631, 0.7071067811865476 * 1.0000001};
+    // which closed components may contain a point of which: box_intersection_d
+    // of each component's query point against the components' boxes
+    using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, Idx, CGAL::Box_intersection_d::ID_EXPLICIT>;
+    std::vector<Vec> query(C);
+    std::vector<Box> points, boxes;
+    for (Idx c : closed) {
+      const auto& t0 = T[order[start[c]]];
+      Vec q{(P[t0[0]][0] + P[t0[1]][0] + P[t0[2]][0]) / 3, (P[t0[0]][1] + P[t0[1]][1] + P[t0[2]][1]) / 3,
+            (P[t0[0]][2] + P[t0[1]][2] + P[t0[2]][2]) / 3};
+      query[c] = q;
+      points.emplace_back(CGAL::Bbox_3(q[0], q[1], q[2], q[0], q[1], q[2]), c);
+      const auto& b = box[c];
+      boxes.emplace_back(CGAL::Bbox_3(b[0], b[1], b[2], b[3], b[4], b[5]), c);
+    }
+    std::vector<int> depth(C, 0);
+    if (closed.size() > 1)
+      CGAL::box_intersection_d(
+          points.begin(), points.end(), boxes.begin(), boxes.end(),
+          [&](const Box& pt, const Box& bx) {
+            const Idx c = pt.info(), d = bx.info();
+            if (c == d) return;
+            int crossings = 0;
+            for (Idx k = start[d]; k < start[d + 1]; ++k)
+              if (ray_hits(query[c], dir, T[order[k]])) ++crossings;
+            depth[c] += crossings & 1;
+          },
+          std::ptrdiff_t(10), CGAL::Box_intersection_d::CLOSED, CGAL::Box_intersection_d::BIPARTITE);
+    std::vector<unsigned char> flip_c(C, 0);
+    bool any = false;
+    for (Idx c : closed) {
+      const bool want_positive = (depth[c] % 2) == 0;
+      if ((vol[c] > 0) != want_positive) {
+        flip_c[c] = 1;
+        any = true;
+        ++r.components_flipped;
+      }
+    }
+    if (!any) return;
+    std::vector<unsigned char> flip(F);
+    for (std::size_t t = 0; t < F; ++t) flip[t] = flip_c[comp[t]];
+    apply_flips(flip);
+  }
+
+  // Moeller-Trumbore, ray q + s dir with s > 0.
+  bool ray_hits(const Vec& q, const Vec& dir, const std::array<Idx, 3>& t) const
+  {
+    const Vec& a = P[t[0]];
+    Vec e1 = sub(P[t[1]], a), e2 = sub(P[t[2]], a);
+    Vec h = cross(dir, e2);
+    double det = dot(e1, h);
+    if (det == 0) return false;
+    double inv = 1.0 / det;
+    Vec sv = sub(q, a);
+    double uu = dot(sv, h) * inv;
+    if (uu < 0 || uu > 1) return false;
+    Vec qv = cross(sv, e1);
+    double vv = dot(dir, qv) * inv;
+    if (vv < 0 || uu + vv > 1) return false;
+    return dot(e2, qv) * inv > 0;
+  }
+
+  // ---------------------------------------------------------------- pipeline
+  template <class Visitor>
+  bool run_topology(Visitor& vis)
+  {
+    std::vector<unsigned char> complex_flag;
+    vis.start_phase("cut");
+    r.complex_edges = pair_edges();
+    vis.end_phase("cut");
+    if (vis.stop_requested()) return false;
+    vis.start_phase("orient");
+    orient();
+    vis.end_phase("orient");
+    if (vis.stop_requested()) return false;
+    vis.start_phase("split");
+    bool stale = split_vertices(complex_flag);  // components may have changed
+    vis.end_phase("split");
+    if (vis.stop_requested()) return false;
+    if (opt.snap_epsilon > 0) {
+      vis.start_phase("stitch");
+      if (stale) orient();
+      stale = false;
+      const std::size_t before = count_boundary();
+      if (stitch(opt.snap_epsilon)) {
+        pair_edges();
+        orient();
+        stale = split_vertices(complex_flag);
+        const std::size_t after = count_boundary();
+        r.edges_stitched = before > after ? (before - after) / 2 : 0;
+      }
+      vis.end_phase("stitch");
+      if (vis.stop_requested()) return false;
+    }
+    vis.start_phase("outward");
+    if (stale) orient();  // components, closedness after cuts
+    orient_outward();
+    vis.end_phase("outward");
+    compact_points();
+    r.components = comp_faces.size();
+    r.faces_out = T.size();
+    r.vertices_out = P.size();
+    r.boundary_edges = count_boundary();
+    r.faces_reoriented = 0;
+    for (unsigned char x : reversed) r.faces_reoriented += x;
+    return true;
+  }
+
+  std::size_t count_boundary() const
+  {
+    std::size_t b = 0;
+    for (Idx p : partner) b += (p == none);
+    return b;
+  }
+
+  // ---------------------------------------------------------------- build
+  // Writes the faces into `out` (cleared first) directly as halfedges: every
+  // partnered side pair is one edge, every other side gets a border opposite
+  // whose next is the border leaving its target (unique: one fan per vertex).
+  template <class PolygonMesh, class VPM>
+  void build(PolygonMesh& out, VPM vpm) const
+  {
+    using GT = boost::graph_traits<PolygonMesh>;
+    using vertex_descriptor = typename GT::vertex_descriptor;
+    using halfedge_descriptor = typename GT::halfedge_descriptor;
+    using face_descriptor = typename GT::face_descriptor;
+    using Point = typename boost::property_traits<VPM>::value_type;
+    CGAL::clear(out);
+    const std::size_t F = T.size(), S = 3 * F, V = P.size();
+    std::size_t nb = count_boundary();
+    reserve(out, static_cast<typename GT::vertices_size_type>(V),
+            static_cast<typename GT::edges_size_type>((S + nb) / 2),
+            static_cast<typename GT::faces_size_type>(F));
+    std::vector<vertex_descriptor> vd(V);
+    for (std::size_t v = 0; v < V; ++v) {
+      vd[v] = add_vertex(out);
+      put(vpm, vd[v], Point(P[v][0], P[v][1], P[v][2]));
+    }
+    std::vector<face_descriptor> fd(F);
+    for (std::size_t t = 0; t < F; ++t) fd[t] = add_face(out);
+    std::vector<halfedge_descriptor> he(S);
+    std::vector<halfedge_descriptor> border_out(V, GT::null_halfedge());
+    for (std::size_t s = 0; s < S; ++s) {
+      const Idx p = partner[s];
+      if (p != none && p < s) continue;
+      halfedge_descriptor h = halfedge(add_edge(out), out);
+      he[s] = h;
+      halfedge_descriptor o = opposite(h, out);
+      if (p != none) {
+        he[p] = o;
+      } else {
+        // border from dst(s) to src(s)
+        set_target(o, vd[src(Idx(s))], out);
+        set_face(o, GT::null_face(), out);
+        border_out[dst(Idx(s))] = o;
+      }
+    }
+    for (std::size_t s = 0; s < S; ++s) {
+      const Idx t = Idx(s / 3);
+      set_target(he[s], vd[dst(Idx(s))], out);
+      set_face(he[s], fd[t], out);
+      set_next(he[s], he[dst_corner(Idx(s))], out);
+      set_halfedge(vd[dst(Idx(s))], he[s], out);
+    }
+    for (std::size_t t = 0; t < F; ++t) set_halfedge(fd[t], he[3 * t], out);
+    // border next pointers: the border ending at src(s) continues with the border leaving src(s)
+    for (std::size_t s = 0; s < S; ++s) {
+      if (partner[s] != none) continue;
+      halfedge_descriptor b = opposite(he[s], out);
+      const Idx a = src(Idx(s));
+      set_next(b, border_out[a], out);
+      set_halfedge(vd[a], b, out);
+    }
+  }
+};
+
+} // namespace internal
+} // namespace mrepair
+
+#endif // MREPAIR_INTERNAL_STITCH_SOUP_SOUP_REPAIRER_H

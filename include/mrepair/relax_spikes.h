@@ -1,0 +1,282 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_RELAX_SPIKES_H
+#define MREPAIR_RELAX_SPIKES_H
+
+#include <mrepair/geometric_statistics.h>
+#include <mrepair/internal/scan_clean/common.h>
+#include <mrepair/internal/scan_clean/spikes_impl.h>
+#include <mrepair/parameters.h>
+#include <mrepair/report.h>
+#include <mrepair/status.h>
+#include <mrepair/visitors.h>
+
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/Named_function_parameters.h>
+
+#include <string>
+
+/// \file relax_spikes.h
+/// Spikes and foldovers (RameshCleaner 3.7, Algorithm 2) and unrelaxable
+/// spikes (3.8).
+///
+/// A vertex is *spiked* when
+///  1. (paper) an incident edge has a dihedral angle (angle between the two
+///     face normals) above `spike_angle` (default 100 degrees, as `inspect`), or
+///  2. (mrepair, second criterion) it is an interior vertex whose distance from
+///     the plane of its 1-ring (centroid and Newell normal of the link polygon)
+///     exceeds `spike_height_factor` (default 2) x the mean length of its link
+///     edges. A tall narrow spike (a vertex pushed 3 to 10 edge lengths off a
+///     smooth surface) keeps every dihedral below 90 degrees and is found only
+///     by this test; a regular vertex of a smooth or a CAD-like mesh (a cube
+///     corner: ~0.6) stays far below 2.
+///
+/// Relaxation:
+/// \code
+/// S = spiked vertices; W = n-ring of S (n = relax_rings)
+/// while S not empty and i < max_relax_iterations:
+///   R = S and its 1-ring, sorted by decreasing weight (Gauss-Seidel: tips first)
+///   for v in R: p(v) += w(theta(v)) L(v)     // L uniform Laplacian, boundary-restricted
+///   update statistics around R; S = spiked vertices in W
+/// w(theta) = 0 for theta <= a, min(1, (theta - a)/(b - a)) above; w = 1 for criterion 2
+/// \endcode
+
+MREPAIR_ADD_NAMED_PARAMETER(spike_height_factor)  // second spike criterion (2; 0 disables)
+MREPAIR_ADD_NAMED_PARAMETER(relax_start_angle)    // a, degrees (spike_angle / 2)
+MREPAIR_ADD_NAMED_PARAMETER(relax_full_angle)     // b, degrees (spike_angle)
+MREPAIR_ADD_NAMED_PARAMETER(relax_rings)          // n of the working region (3)
+MREPAIR_ADD_NAMED_PARAMETER(max_relax_iterations) // (10)
+MREPAIR_ADD_NAMED_PARAMETER(max_spike_removal_rounds) // (3)
+
+namespace mrepair {
+
+/// \ingroup mrepair_clean
+/// result of `relax_spikes()`.
+struct Spike_relaxation_result
+{
+  Status status = Status::ok;
+  std::string message;
+  std::size_t spiked_vertices_before = 0;   ///< by either criterion
+  std::size_t spiked_by_height_before = 0;  ///< of which only by the height criterion
+  std::size_t spiked_vertices_after = 0;    ///< whole mesh
+  std::size_t spiked_in_region_after = 0;   ///< in the working region (unrelaxable)
+  std::size_t vertices_relaxed = 0;         ///< distinct vertices moved
+  std::size_t region_vertices = 0;
+  std::size_t iterations = 0;
+
+  void to_report(Report& r) const
+  {
+    r.add("status", to_string(status));
+    if (!message.empty()) r.add("message", message);
+    r.add("spiked_vertices_before", spiked_vertices_before);
+    r.add("spiked_by_height_before", spiked_by_height_before);
+    r.add("spiked_vertices_after", spiked_vertices_after);
+    r.add("spiked_in_region_after", spiked_in_region_after);
+    r.add("vertices_relaxed", vertices_relaxed);
+    r.add("region_vertices", region_vertices);
+    r.add("iterations", iterations);
+  }
+};
+
+/// \ingroup mrepair_clean
+/// result of `remove_unrelaxable_spikes()`.
+struct Spike_removal_result
+{
+  Status status = Status::ok;
+  std::string message;
+  std::size_t spiked_vertices_found = 0;
+  std::size_t vertices_removed = 0;        ///< spiked vertices and vertices left isolated
+  std::size_t faces_removed = 0;           ///< faces incident to spiked vertices
+  std::size_t dangling_faces_removed = 0;  ///< smaller fans of pinched vertices
+  std::size_t pinched_vertices_fixed = 0;
+  std::size_t boundary_loops = 0;          ///< boundary loops along the removed region (holes left)
+  std::size_t spiked_vertices_after = 0;
+  std::size_t rounds = 0;
+
+  void to_report(Report& r) const
+  {
+    r.add("status", to_string(status));
+    if (!message.empty()) r.add("message", message);
+    r.add("spiked_vertices_found", spiked_vertices_found);
+    r.add("vertices_removed", vertices_removed);
+    r.add("faces_removed", faces_removed);
+    r.add("dangling_faces_removed", dangling_faces_removed);
+    r.add("pinched_vertices_fixed", pinched_vertices_fixed);
+    r.add("boundary_loops", boundary_loops);
+    r.add("spiked_vertices_after", spiked_vertices_after);
+    r.add("rounds", rounds);
+  }
+};
+
+namespace internal {
+namespace scan_clean {
+template <typename NP>
+bool read_spike_settings(const NP& np, Spike_settings& s, std::string& message)
+{
+  const double angle = get_or<double>(np, internal_np::spike_angle, 100.0);
+  const double a = get_or<double>(np, internal_np::relax_start_angle, angle / 2);
+  const double b = get_or<double>(np, internal_np::relax_full_angle, angle);
+  s.height_factor = get_or<double>(np, internal_np::spike_height_factor, 2.0);
+  s.rings = get_or<std::size_t>(np, internal_np::relax_rings, std::size_t(3));
+  s.max_iterations = get_or<std::size_t>(np, internal_np::max_relax_iterations, std::size_t(10));
+  s.max_removal_rounds =
+      get_or<std::size_t>(np, internal_np::max_spike_removal_rounds, std::size_t(3));
+  if (!(angle >= 0 && angle <= 180) || !(a >= 0 && a <= 180) || !(b >= 0 && b <= 180) ||
+      !std::isfinite(s.height_factor)) {
+    message = "spike_angle, relax_start_angle, relax_full_angle in [0,180]; finite spike_height_factor";
+    return false;
+  }
+  s.spike_angle = to_radians(angle);
+  s.start_angle = to_radians(a);
+  s.full_angle = to_radians(b);
+  return true;
+}
+} // namespace scan_clean
+} // namespace internal
+
+/// \ingroup mrepair_clean
+/// relaxes spiked vertices and foldovers by a dihedral-weighted Laplacian in
+/// an n-ring working region, using and updating `stats` (current for `tm`).
+/// \tparam TriangleMesh model of `MutableFaceGraph`, triangulated
+/// \param np optional:
+///   - `spike_angle` (double, degrees, 100): dihedral criterion
+///   - `spike_height_factor` (double, 2): height criterion (see file doc); 0 disables
+///   - `relax_start_angle` (double, degrees, spike_angle/2): a of eq. (2)
+///   - `relax_full_angle` (double, degrees, spike_angle): b of eq. (2)
+///   - `relax_rings` (std::size_t, 3): n of the working region
+///   - `max_relax_iterations` (std::size_t, 10)
+///   - `visitor` (`Default_visitor`): phase "relax_spikes", progress, cancellation
+/// \return ok when no spiked vertex is left in the working region, partial otherwise
+///   (call `remove_unrelaxable_spikes()`), cancelled, invalid_parameter.
+template <typename TriangleMesh, typename VPM, typename CGAL_NP_TEMPLATE_PARAMETERS>
+Spike_relaxation_result relax_spikes(TriangleMesh& tm, Geometric_statistics<TriangleMesh, VPM>& stats,
+                                     const CGAL_NP_CLASS& np = parameters::default_values())
+{
+  namespace SC = internal::scan_clean;
+  Spike_relaxation_result r;
+  internal::Visitor_handle<CGAL_NP_CLASS> vis(np);
+  internal::Phase_scope<internal::Visitor_handle<CGAL_NP_CLASS>> phase(vis, "relax_spikes");
+  SC::Spike_settings s;
+  if (!SC::read_spike_settings(np, s, r.message)) {
+    r.status = Status::invalid_parameter;
+    return r;
+  }
+  auto S = SC::collect_spiked(stats, s, &r.spiked_by_height_before);
+  r.spiked_vertices_before = S.size();
+  SC::Relax_counts c;
+  if (!S.empty()) {
+    SC::Spike_relaxer<TriangleMesh, VPM, internal::Visitor_handle<CGAL_NP_CLASS>> worker(
+        tm, stats.vertex_point_map(), stats, vis, s, c);
+    worker.run(std::move(S));
+  }
+  r.vertices_relaxed = c.vertices_relaxed;
+  r.iterations = c.iterations;
+  r.region_vertices = c.region_vertices;
+  r.spiked_in_region_after = c.spiked_in_region_after;
+  // Only the working region changed: moved vertices are within 1 ring of S, and
+  // a vertex's spike status depends on its 1-ring, so with n >= 2 rings every
+  // vertex whose status can change lies in W; otherwise count everything again.
+  if (s.rings >= 2)
+    r.spiked_vertices_after = r.spiked_vertices_before - c.spiked_in_region_before + c.spiked_in_region_after;
+  else
+    r.spiked_vertices_after = SC::count_spiked(stats, s);
+  if (c.cancelled) {
+    r.status = Status::cancelled;
+    r.message = "cancelled by the visitor";
+  } else if (r.spiked_in_region_after > 0) {
+    r.status = Status::partial;
+    r.message = "unrelaxable spikes left (see remove_unrelaxable_spikes)";
+  }
+  vis.progress(1.0);
+  return r;
+}
+
+/// \ingroup mrepair_clean
+/// same, computing the statistics itself.
+/// \param np also `vertex_point_map`. Non-finite coordinates give
+///   `non_finite_input`, non-triangle faces `invalid_mesh`, no faces
+///   `empty_input`, the mesh untouched.
+template <typename TriangleMesh, typename CGAL_NP_TEMPLATE_PARAMETERS>
+Spike_relaxation_result relax_spikes(TriangleMesh& tm,
+                                     const CGAL_NP_CLASS& np = parameters::default_values())
+{
+  using VPM = typename CGAL::GetVertexPointMap<TriangleMesh, CGAL_NP_CLASS>::type;
+  VPM vpm = CGAL::parameters::choose_parameter(
+      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+      get_property_map(CGAL::vertex_point, tm));
+  Spike_relaxation_result r;
+  r.status = internal::scan_clean::check_input(tm, vpm, r.message);
+  if (r.status != Status::ok) return r;
+  Geometric_statistics<TriangleMesh, VPM> stats(tm, vpm);
+  stats.compute_all();
+  return relax_spikes(tm, stats, np);
+}
+
+/// \ingroup mrepair_clean
+/// removes the vertices that are still spiked (RameshCleaner 3.8: micro
+/// tunnels, severe foldovers; run `relax_spikes()` first) with their incident
+/// faces. A vertex left with two fans is made manifold by removing its smaller
+/// fans. The holes are left for the hole filler and counted in `boundary_loops`.
+/// Uses and updates `stats`.
+/// \param np optional: `spike_angle` (100), `spike_height_factor` (2),
+///   `max_spike_removal_rounds` (std::size_t, 3: vertices spiked along the new
+///   boundary are removed in further rounds), `visitor` (phase "remove_unrelaxable_spikes").
+template <typename TriangleMesh, typename VPM, typename CGAL_NP_TEMPLATE_PARAMETERS>
+Spike_removal_result remove_unrelaxable_spikes(TriangleMesh& tm,
+                                               Geometric_statistics<TriangleMesh, VPM>& stats,
+                                               const CGAL_NP_CLASS& np = parameters::default_values())
+{
+  namespace SC = internal::scan_clean;
+  Spike_removal_result r;
+  internal::Visitor_handle<CGAL_NP_CLASS> vis(np);
+  internal::Phase_scope<internal::Visitor_handle<CGAL_NP_CLASS>> phase(vis,
+                                                                       "remove_unrelaxable_spikes");
+  SC::Spike_settings s;
+  if (!SC::read_spike_settings(np, s, r.message)) {
+    r.status = Status::invalid_parameter;
+    return r;
+  }
+  if (vis.stop_requested()) {
+    r.status = Status::cancelled;
+    r.message = "cancelled by the visitor";
+    return r;
+  }
+  auto S = SC::collect_spiked(stats, s);
+  SC::Removal_counts c;
+  if (!S.empty()) {
+    SC::Spike_remover<TriangleMesh, VPM> worker(tm, stats, s, c);
+    worker.run(S);
+  }
+  r.spiked_vertices_found = S.size();
+  r.vertices_removed = c.vertices_removed;
+  r.faces_removed = c.faces_removed;
+  r.dangling_faces_removed = c.dangling_faces_removed;
+  r.pinched_vertices_fixed = c.pinched_vertices_fixed;
+  r.boundary_loops = c.boundary_loops;
+  r.rounds = c.rounds;
+  r.spiked_vertices_after = SC::count_spiked(stats, s);
+  if (r.spiked_vertices_after > 0) r.status = Status::partial;
+  vis.progress(1.0);
+  return r;
+}
+
+/// \ingroup mrepair_clean
+/// same, computing the statistics itself (input checks as `relax_spikes()`).
+template <typename TriangleMesh, typename CGAL_NP_TEMPLATE_PARAMETERS>
+Spike_removal_result remove_unrelaxable_spikes(TriangleMesh& tm,
+                                               const CGAL_NP_CLASS& np = parameters::default_values())
+{
+  using VPM = typename CGAL::GetVertexPointMap<TriangleMesh, CGAL_NP_CLASS>::type;
+  VPM vpm = CGAL::parameters::choose_parameter(
+      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+      get_property_map(CGAL::vertex_point, tm));
+  Spike_removal_result r;
+  r.status = internal::scan_clean::check_input(tm, vpm, r.message);
+  if (r.status != Status::ok) return r;
+  Geometric_statistics<TriangleMesh, VPM> stats(tm, vpm);
+  stats.compute_all();
+  return remove_unrelaxable_spikes(tm, stats, np);
+}
+
+} // namespace mrepair
+
+#endif // MREPAIR_RELAX_SPIKES_H

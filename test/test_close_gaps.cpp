@@ -1,0 +1,448 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Tests of close_gaps() and Gap_closing_sequence (issue 4).
+#include <mrepair/close_gaps.h>
+
+#include "fixtures.h"
+
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <tuple>
+#include <vector>
+
+using namespace mrepair_test;
+namespace MP = mrepair::parameters;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+namespace {
+
+// nx x ny grid of triangles over [x0, x0+w] x [0, h], appended to `s`.
+void add_patch(Soup& s, double x0, double w, std::size_t nx, double h, std::size_t ny)
+{
+  std::size_t base = s.points.size();
+  for (std::size_t j = 0; j <= ny; ++j)
+    for (std::size_t i = 0; i <= nx; ++i)
+      s.points.emplace_back(x0 + w * double(i) / nx, h * double(j) / ny, 0.);
+  auto id = [&](std::size_t i, std::size_t j) { return base + j * (nx + 1) + i; };
+  for (std::size_t j = 0; j < ny; ++j)
+    for (std::size_t i = 0; i < nx; ++i) {
+      s.polygons.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.polygons.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+}
+
+// 20 x 10 grid over [0,2] x [0,1] cut along y = 0.5 between x = 0.5 and 1.5:
+// the 9 inner vertices of the cut are duplicated and the copies used by the
+// faces above are lifted by `opening` in y. 400 faces, 240 vertices.
+Soup slit_plane(double opening)
+{
+  Soup s;
+  const std::size_t nx = 20, ny = 10;
+  for (std::size_t j = 0; j <= ny; ++j)
+    for (std::size_t i = 0; i <= nx; ++i) s.points.emplace_back(0.1 * i, 0.1 * j, 0.);
+  std::vector<std::size_t> copy(nx + 1, 0);
+  for (std::size_t i = 6; i <= 14; ++i) {
+    copy[i] = s.points.size();
+    s.points.emplace_back(0.1 * i, 0.5 + opening, 0.);
+  }
+  auto id = [&](std::size_t i, std::size_t j, bool upper) {
+    if (upper && j == 5 && i >= 6 && i <= 14) return copy[i];
+    return j * (nx + 1) + i;
+  };
+  for (std::size_t j = 0; j < ny; ++j)
+    for (std::size_t i = 0; i < nx; ++i) {
+      bool up = j >= 5;  // faces of rows 5.. are above the cut
+      s.polygons.push_back({id(i, j, up), id(i + 1, j, up), id(i + 1, j + 1, up)});
+      s.polygons.push_back({id(i, j, up), id(i + 1, j + 1, up), id(i, j + 1, up)});
+    }
+  return s;
+}
+
+template <class Mesh>
+std::size_t border_edges(const Mesh& m)
+{
+  return mrepair::internal::count_boundary(m).first;
+}
+template <class Mesh>
+std::size_t border_loops(const Mesh& m)
+{
+  return mrepair::internal::count_boundary(m).second;
+}
+template <class Mesh>
+std::size_t components(const Mesh& m)
+{
+  auto fcc = get(CGAL::dynamic_face_property_t<std::size_t>(), m);
+  return PMP::connected_components(m, fcc);
+}
+template <class Mesh>
+Point point(const Mesh& m, typename boost::graph_traits<Mesh>::vertex_descriptor v)
+{
+  auto p = get(CGAL::vertex_point, m, v);
+  return Point(p.x(), p.y(), p.z());
+}
+// border halfedges with both ends in the vertical band x0 <= x <= x1 and not horizontal.
+template <class Mesh>
+std::size_t seam_border_edges(const Mesh& m, double x0, double x1)
+{
+  std::size_t n = 0;
+  for (auto h : halfedges(m)) {
+    if (!is_border(h, m)) continue;
+    Point a = point(m, source(h, m)), b = point(m, target(h, m));
+    if (a.x() >= x0 && a.x() <= x1 && b.x() >= x0 && b.x() <= x1 && std::abs(a.y() - b.y()) > 1e-9) ++n;
+  }
+  return n;
+}
+// the mesh as a sorted list of faces, each face its three points rotated to start at the smallest.
+template <class Mesh>
+std::vector<std::array<std::tuple<double, double, double>, 3>> signature(const Mesh& m)
+{
+  std::vector<std::array<std::tuple<double, double, double>, 3>> out;
+  for (auto f : faces(m)) {
+    std::array<std::tuple<double, double, double>, 3> t;
+    int i = 0;
+    for (auto v : CGAL::vertices_around_face(halfedge(f, m), m)) {
+      Point p = point(m, v);
+      t[i++] = std::make_tuple(p.x(), p.y(), p.z());
+    }
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    out.push_back(t);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+template <class Mesh>
+std::vector<std::tuple<double, double, double>> vertex_signature(const Mesh& m)
+{
+  std::vector<std::tuple<double, double, double>> out;
+  for (auto v : vertices(m)) {
+    Point p = point(m, v);
+    out.push_back(std::make_tuple(p.x(), p.y(), p.z()));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+} // namespace
+
+template <class C>
+class Close_gaps : public ::testing::Test
+{
+};
+TYPED_TEST_SUITE(Close_gaps, Mesh_configs);
+
+TYPED_TEST(Close_gaps, two_patches_with_one_percent_gap_become_one)
+{
+  using Mesh = typename TypeParam::Mesh;
+  BOOST_CONCEPT_ASSERT((CGAL::concepts::MutableFaceGraph<Mesh>));
+  Soup s;
+  add_patch(s, 0.0, 1.0, 10, 1.0, 10);
+  add_patch(s, 1.01, 1.0, 10, 1.0, 10);
+  Mesh m = to_mesh<Mesh>(s);
+  ASSERT_EQ(border_edges(m), 80u);
+  ASSERT_EQ(components(m), 2u);
+
+  mrepair::Gap_closing_result r = mrepair::close_gaps(m, 0.02);
+  EXPECT_EQ(r.status, mrepair::Status::ok);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_EQ(r.boundary_edges_before, 80u);
+  EXPECT_EQ(r.boundary_loops_before, 2u);
+  // 11 seam vertices on each side merge pairwise; the 20 seam edges glue.
+  EXPECT_EQ(r.vertex_vertex, 11u);
+  EXPECT_EQ(r.vertex_edge, 0u);
+  EXPECT_EQ(r.boundary_edges_after, 60u);
+  EXPECT_EQ(r.boundary_loops_after, 1u);
+  EXPECT_EQ(border_edges(m), 60u);
+  EXPECT_EQ(components(m), 1u);
+  EXPECT_EQ(face_count(m), 400u);
+  EXPECT_EQ(vertices(m).size(), 231u);
+  EXPECT_EQ(seam_border_edges(m, 0.95, 1.06), 0u);
+  EXPECT_LE(r.max_displacement, 0.02);
+  EXPECT_NEAR(r.max_displacement, 0.005, 1e-9);  // λ = 0.5: both sides meet in the middle
+  EXPECT_EQ(r.pinched_vertices, 0u);
+}
+
+TYPED_TEST(Close_gaps, t_junction_seam_closes_without_t_junctions)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  add_patch(s, 0.0, 1.0, 10, 1.0, 10);   // 11 vertices on the seam
+  add_patch(s, 1.01, 1.0, 10, 1.0, 20);  // 21 vertices on the seam
+  Mesh m = to_mesh<Mesh>(s);
+  ASSERT_EQ(border_edges(m), 100u);  // 40 left + 60 right
+
+  mrepair::Gap_closing_result r = mrepair::close_gaps(m, 0.02);
+  EXPECT_EQ(r.status, mrepair::Status::ok);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  // 11 matching pairs merge; the 10 right vertices between them split left edges.
+  EXPECT_EQ(r.vertex_vertex, 11u);
+  EXPECT_EQ(r.vertex_edge, 10u);
+  EXPECT_EQ(border_edges(m), 70u);  // 30 left + 40 right
+  EXPECT_EQ(border_loops(m), 1u);
+  EXPECT_EQ(components(m), 1u);
+  EXPECT_EQ(face_count(m), 200u + 400u + 10u);
+  EXPECT_EQ(vertices(m).size(), 121u + 231u - 11u);
+  EXPECT_EQ(seam_border_edges(m, 0.95, 1.06), 0u);
+}
+
+TYPED_TEST(Close_gaps, crack_in_a_plane_closes)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh m = to_mesh<Mesh>(slit_plane(0.005));
+  ASSERT_EQ(border_edges(m), 80u);  // 60 outer + 2 x 10 along the slit
+  ASSERT_EQ(border_loops(m), 2u);
+
+  mrepair::Gap_closing_result r = mrepair::close_gaps(m, 0.01);
+  EXPECT_EQ(r.status, mrepair::Status::ok);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_EQ(r.operations, 9u);
+  EXPECT_EQ(border_edges(m), 60u);
+  EXPECT_EQ(border_loops(m), 1u);
+  EXPECT_EQ(face_count(m), 400u);
+  EXPECT_EQ(vertices(m).size(), 231u);
+}
+
+TYPED_TEST(Close_gaps, slot_wider_than_tolerance_stays_open)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  add_patch(s, 0.0, 1.0, 10, 1.0, 10);
+  add_patch(s, 1.01, 1.0, 10, 1.0, 10);  // gap 0.01: closes
+  add_patch(s, 2.06, 1.0, 10, 1.0, 10);  // slot 0.05: stays
+  Mesh m = to_mesh<Mesh>(s);
+  ASSERT_EQ(border_edges(m), 120u);
+
+  mrepair::Gap_closing_result r = mrepair::close_gaps(m, 0.02);
+  EXPECT_EQ(r.status, mrepair::Status::ok);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_EQ(r.operations, 11u);
+  EXPECT_EQ(border_edges(m), 100u);
+  EXPECT_EQ(border_loops(m), 2u);
+  EXPECT_EQ(components(m), 2u);
+  EXPECT_EQ(seam_border_edges(m, 0.95, 1.06), 0u);
+  EXPECT_EQ(seam_border_edges(m, 2.0, 2.1), 20u);  // both sides of the slot
+}
+
+TYPED_TEST(Close_gaps, relative_tolerance)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  add_patch(s, 0.0, 1.0, 10, 1.0, 10);
+  add_patch(s, 1.01, 1.0, 10, 1.0, 10);  // gap 0.01; diagonal sqrt(2.01^2 + 1) = 2.245
+  Mesh m = to_mesh<Mesh>(s);
+  const double diag = std::sqrt(2.01 * 2.01 + 1.0);
+  auto r = mrepair::close_gaps(m, 0.004, MP::gap_relative_tolerance(true));  // 0.00898 < 0.01
+  EXPECT_EQ(r.status, mrepair::Status::ok);
+  EXPECT_NEAR(r.tolerance, 0.004 * diag, 1e-12);
+  EXPECT_EQ(r.operations, 0u);
+  EXPECT_EQ(border_edges(m), 80u);
+  r = mrepair::close_gaps(m, 0.006, MP::gap_relative_tolerance(true));  // 0.0135 > 0.01
+  EXPECT_EQ(r.operations, 11u);
+  EXPECT_EQ(border_edges(m), 60u);
+}
+
+TYPED_TEST(Close_gaps, forward_backward_restores_the_input)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  add_patch(s, 0.0, 1.0, 10, 1.0, 10);
+  add_patch(s, 1.01, 1.0, 10, 1.0, 20);
+  add_patch(s, 2.025, 1.0, 10, 1.0, 7);
+  Mesh m = to_mesh<Mesh>(s);
+  const auto faces0 = signature(m);
+  const auto verts0 = vertex_signature(m);
+  const std::size_t nf0 = face_count(m), nv0 = vertices(m).size();
+  std::vector<std::pair<typename boost::graph_traits<Mesh>::vertex_descriptor, Point>> by_descriptor;
+  for (auto v : vertices(m)) by_descriptor.emplace_back(v, point(m, v));
+
+  mrepair::Gap_closing_sequence<Mesh> seq(m, 0.02);
+  ASSERT_EQ(seq.status(), mrepair::Status::ok);
+  EXPECT_EQ(seq.position(), 0u);
+  EXPECT_EQ(seq.current_distance(), 0.0);
+  // the 0.01 gap first, then the 0.015 one
+  std::size_t a = seq.forward_to_distance(0.012);
+  EXPECT_EQ(a, 21u);
+  EXPECT_LE(seq.current_distance(), 0.012);
+  EXPECT_EQ(border_loops(m), 2u);
+  std::size_t b = seq.forward_to_distance(0.02);
+  EXPECT_GT(b, 0u);
+  EXPECT_EQ(border_loops(m), 1u);
+  EXPECT_EQ(seq.size(), a + b);
+  EXPECT_EQ(seq.position(), a + b);
+  const auto faces1 = signature(m);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+
+  // back to the first gap only, then all the way
+  EXPECT_EQ(seq.backward_to_distance(0.012), b);
+  EXPECT_EQ(seq.position(), a);
+  EXPECT_EQ(border_loops(m), 2u);
+  EXPECT_EQ(seq.backward(1000), a);
+  EXPECT_EQ(seq.position(), 0u);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_EQ(face_count(m), nf0);
+  EXPECT_EQ(vertices(m).size(), nv0);
+  EXPECT_EQ(signature(m), faces0);
+  EXPECT_EQ(vertex_signature(m), verts0);
+  if (std::is_same<Mesh, Surface_mesh>::value) {
+    // Surface_mesh: the very same vertex indices with bit-identical positions
+    for (auto& vp : by_descriptor) {
+      Point p = point(m, vp.first);
+      EXPECT_TRUE(p.x() == vp.second.x() && p.y() == vp.second.y() && p.z() == vp.second.z());
+    }
+  }
+  // replay forward: the same result
+  EXPECT_EQ(seq.forward(1000000), a + b);
+  EXPECT_EQ(signature(m), faces1);
+  EXPECT_EQ(seq.backward(a + b), a + b);
+  EXPECT_EQ(signature(m), faces0);
+}
+
+TYPED_TEST(Close_gaps, valid_after_every_step)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  add_patch(s, 0.0, 1.0, 10, 1.0, 10);
+  add_patch(s, 1.01, 1.0, 10, 1.0, 20);
+  Mesh m = to_mesh<Mesh>(slit_plane(0.005));
+  Mesh m2 = to_mesh<Mesh>(s);
+  for (Mesh* mesh : {&m, &m2}) {
+    mrepair::Gap_closing_sequence<Mesh> seq(*mesh, 0.02);
+    std::size_t n = 0;
+    while (seq.forward(1) == 1) {
+      ++n;
+      ASSERT_TRUE(CGAL::is_valid_polygon_mesh(*mesh)) << "after forward step " << n;
+    }
+    EXPECT_GT(n, 0u);
+    while (seq.backward(1) == 1) ASSERT_TRUE(CGAL::is_valid_polygon_mesh(*mesh)) << "backward at " << seq.position();
+    EXPECT_EQ(seq.position(), 0u);
+  }
+}
+
+TYPED_TEST(Close_gaps, region_restriction)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  add_patch(s, 0.0, 1.0, 10, 1.0, 10);
+  add_patch(s, 1.01, 1.0, 10, 1.0, 10);
+  add_patch(s, 2.02, 1.0, 10, 1.0, 10);
+  Mesh m = to_mesh<Mesh>(s);
+  // select the faces of the two right patches only
+  auto sel = get(CGAL::dynamic_face_property_t<bool>(), m);
+  for (auto f : faces(m)) {
+    double x = 0;
+    for (auto v : CGAL::vertices_around_face(halfedge(f, m), m)) x += point(m, v).x() / 3;
+    put(sel, f, x > 1.005);
+  }
+  auto r = mrepair::close_gaps(m, 0.02, MP::gap_face_selection(sel));
+  EXPECT_EQ(r.status, mrepair::Status::ok);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_EQ(r.operations, 11u);
+  EXPECT_EQ(border_loops(m), 2u);
+  EXPECT_EQ(seam_border_edges(m, 0.95, 1.06), 20u);  // the unselected seam stays open
+  EXPECT_EQ(seam_border_edges(m, 1.96, 2.07), 0u);
+
+  // the same with a vertex selection: only x < 1.5 (the left seam)
+  Mesh m2 = to_mesh<Mesh>(s);
+  auto vsel = get(CGAL::dynamic_vertex_property_t<bool>(), m2);
+  for (auto v : vertices(m2)) put(vsel, v, point(m2, v).x() < 1.5);
+  auto r2 = mrepair::close_gaps(m2, 0.02, MP::gap_vertex_selection(vsel));
+  EXPECT_EQ(r2.operations, 11u);
+  EXPECT_EQ(seam_border_edges(m2, 0.95, 1.06), 0u);
+  EXPECT_EQ(seam_border_edges(m2, 1.96, 2.07), 20u);
+}
+
+TYPED_TEST(Close_gaps, bad_input)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh empty;
+  EXPECT_EQ(mrepair::close_gaps(empty, 0.1).status, mrepair::Status::empty_input);
+
+  Soup s;
+  add_patch(s, 0.0, 1.0, 4, 1.0, 4);
+  add_patch(s, 1.01, 1.0, 4, 1.0, 4);
+  s.points[3] = Point(std::numeric_limits<double>::quiet_NaN(), 0., 0.);
+  Mesh m = to_mesh<Mesh>(s);
+  const auto before = face_count(m);
+  auto r = mrepair::close_gaps(m, 0.02);
+  EXPECT_EQ(r.status, mrepair::Status::non_finite_input);
+  EXPECT_EQ(face_count(m), before);
+  EXPECT_EQ(r.operations, 0u);
+
+  Mesh m2 = to_mesh<Mesh>(grid(3, 3));
+  EXPECT_EQ(mrepair::close_gaps(m2, -1.0).status, mrepair::Status::invalid_parameter);
+  EXPECT_EQ(mrepair::close_gaps(m2, 0.1, MP::gap_lambda(2.0)).status,
+            mrepair::Status::invalid_parameter);
+  // a closed mesh: nothing to do
+  Mesh sphere = to_mesh<Mesh>(icosphere(2));
+  auto rs = mrepair::close_gaps(sphere, 0.1);
+  EXPECT_EQ(rs.status, mrepair::Status::ok);
+  EXPECT_EQ(rs.operations, 0u);
+  EXPECT_EQ(face_count(sphere), 320u);
+}
+
+TYPED_TEST(Close_gaps, report_and_cancel)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  add_patch(s, 0.0, 1.0, 10, 1.0, 300);
+  add_patch(s, 1.01, 1.0, 10, 1.0, 300);
+  Mesh m = to_mesh<Mesh>(s);
+  struct Stopper : mrepair::Default_visitor
+  {
+    bool stop_requested() { return true; }
+  } stop;
+  auto r = mrepair::close_gaps(m, 0.02, CGAL::parameters::visitor(std::ref(stop)));
+  EXPECT_EQ(r.status, mrepair::Status::cancelled);
+  EXPECT_EQ(r.operations, 256u);  // polled every 256 contractions
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  mrepair::Report rep;
+  r.to_report(rep);
+  EXPECT_NE(rep.to_json().find("\"vertex_vertex\""), std::string::npos);
+}
+
+#ifdef MREPAIR_CLI
+#include <mrepair/io.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+
+// The command line: close-gaps on an OFF file; bad input exits non-zero.
+TEST(Close_gaps_cli, closes_a_file_and_refuses_bad_input)
+{
+  Soup s;
+  add_patch(s, 0.0, 1.0, 10, 1.0, 10);
+  add_patch(s, 1.01, 1.0, 10, 1.0, 20);
+  const std::string dir = ::testing::TempDir();
+  const std::string in = dir + "close_gaps_in.off", out = dir + "close_gaps_out.off",
+                    rep = dir + "close_gaps_report.json";
+  {
+    std::ofstream f(in);
+    f.precision(17);
+    f << "OFF\n" << s.points.size() << " " << s.polygons.size() << " 0\n";
+    for (const Point& p : s.points) f << p.x() << " " << p.y() << " " << p.z() << "\n";
+    for (const Polygon& q : s.polygons) f << "3 " << q[0] << " " << q[1] << " " << q[2] << "\n";
+  }
+  std::string cmd = std::string(MREPAIR_CLI) + " close-gaps " + in + " " + out +
+                    " --tolerance 0.02 --quiet --report " + rep + " > /dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  Surface_mesh m;
+  ASSERT_EQ(mrepair::read_polygon_mesh(out, m).status, mrepair::Status::ok);
+  EXPECT_EQ(border_edges(m), 70u);
+  EXPECT_EQ(face_count(m), 610u);
+  std::ifstream r(rep);
+  std::string json((std::istreambuf_iterator<char>(r)), std::istreambuf_iterator<char>());
+  EXPECT_NE(json.find("\"vertex_edge\": 10"), std::string::npos) << json;
+
+  std::string missing = std::string(MREPAIR_CLI) + " close-gaps " + dir + "no_such.off " + out +
+                        " --tolerance 0.02 --quiet 2> /dev/null";
+  EXPECT_NE(std::system(missing.c_str()), 0);
+  std::string no_tol = std::string(MREPAIR_CLI) + " close-gaps " + in + " " + out + " 2> /dev/null";
+  EXPECT_NE(std::system(no_tol.c_str()), 0);
+}
+#endif

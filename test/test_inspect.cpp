@@ -1,0 +1,630 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Inspection: hand-built soups and meshes with hand-counted defects, on the
+// soup path and on both mesh types; a CGAL cross-check on a real mesh.
+#include <mrepair/inspect.h>
+
+#include "fixtures.h"
+
+#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <string>
+
+using namespace mrepair_test;
+namespace MP = mrepair::parameters;
+using mrepair::Inspection_report;
+using mrepair::Status;
+
+namespace {
+
+using Counts = std::map<std::string, std::size_t>;
+
+// Compares the named counters of a report (as printed in its "defects" or
+// "input" section) with hand counts.
+void expect_counts(const Inspection_report& r, const Counts& expected, const std::string& where)
+{
+  mrepair::Report rep;
+  r.to_report(rep);
+  for (const auto& kv : expected) {
+    std::string v = rep.get("defects." + kv.first);
+    if (v.empty()) v = rep.get("input." + kv.first);
+    EXPECT_EQ(v, std::to_string(kv.second)) << where << ": " << kv.first;
+  }
+}
+
+Soup without_polygons(Soup s, std::set<std::size_t> drop)
+{
+  Soup out;
+  out.points = s.points;
+  for (std::size_t i = 0; i < s.polygons.size(); ++i)
+    if (!drop.count(i)) out.polygons.push_back(s.polygons[i]);
+  return out;
+}
+
+// appends `b` to `a` (indices shifted).
+Soup merged(Soup a, const Soup& b)
+{
+  const std::size_t n = a.points.size();
+  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
+  for (Polygon p : b.polygons) {
+    for (auto& i : p) i += n;
+    a.polygons.push_back(p);
+  }
+  return a;
+}
+
+// drops the points no polygon uses (indices remapped).
+Soup compacted(const Soup& s)
+{
+  std::vector<std::size_t> id(s.points.size(), std::size_t(-1));
+  Soup out;
+  for (const Polygon& p : s.polygons)
+    for (std::size_t i : p)
+      if (id[i] == std::size_t(-1)) id[i] = 0;
+  for (std::size_t i = 0; i < s.points.size(); ++i)
+    if (id[i] == 0) {
+      id[i] = out.points.size();
+      out.points.push_back(s.points[i]);
+    }
+  for (Polygon p : s.polygons) {
+    for (auto& i : p) i = id[i];
+    out.polygons.push_back(p);
+  }
+  return out;
+}
+
+Soup translated(Soup s, double dx, double dy, double dz)
+{
+  for (auto& p : s.points) p = Point(p.x() + dx, p.y() + dy, p.z() + dz);
+  return s;
+}
+
+std::size_t grid_index(std::size_t nx, std::size_t i, std::size_t j) { return j * (nx + 1) + i; }
+
+// index of the first triangle of cell (i, j) of `grid(nx, ny)`; the second is +1.
+std::size_t cell_triangle(std::size_t nx, std::size_t i, std::size_t j) { return 2 * (j * nx + i); }
+
+template <class Mesh>
+void set_point(Mesh& m, std::size_t index, const Point& p)
+{
+  auto vpm = get(CGAL::vertex_point, m);
+  std::size_t i = 0;
+  for (auto v : vertices(m))
+    if (i++ == index) put(vpm, v, typename boost::property_traits<decltype(vpm)>::value_type(p.x(), p.y(), p.z()));
+}
+
+// Runs the soup inspection and, when the soup is a polygon mesh, the mesh
+// inspection too, and checks the same counts on both.
+template <class Mesh>
+void expect_both(const Soup& s, const Counts& expected, const std::string& where)
+{
+  Inspection_report rs = mrepair::inspect_polygon_soup(s.points, s.polygons);
+  expect_counts(rs, expected, where + " (soup)");
+  Mesh m = to_mesh<Mesh>(s);
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  Inspection_report rm = mrepair::inspect(m);
+  expect_counts(rm, expected, where + " (mesh)");
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------
+// Soup-only defects (a halfedge mesh cannot hold them)
+
+TEST(Inspect_soup, fin_is_one_non_manifold_edge)
+{
+  Soup s;
+  s.points = {Point(0, 0, 0), Point(1, 0, 0), Point(0.5, 1, 0), Point(0.5, -1, 0), Point(0.5, 0, 1)};
+  s.polygons = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  Inspection_report r = mrepair::inspect_polygon_soup(s.points, s.polygons);
+  EXPECT_EQ(r.status, Status::ok);
+  expect_counts(r, {{"non_manifold_edges", 1}, {"inconsistent_orientation_edges", 0},
+                    {"non_manifold_vertices", 0}, {"boundary_edges", 6}, {"boundary_loops", 1},
+                    {"small_holes", 1}, {"connected_components", 1}, {"edges", 7},
+                    {"spiked_vertices", 0}, {"duplicate_faces", 0}, {"degenerate_faces", 0}},
+                "fin");
+  EXPECT_TRUE(std::isnan(r.max_dihedral_angle)); // no edge with exactly two faces
+  EXPECT_FALSE(r.closed);
+}
+
+TEST(Inspect_soup, bowtie_and_crack_vertices)
+{
+  Soup s;
+  s.points = {Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(-1, 0, 0), Point(-1, -1, 0)};
+  s.polygons = {{0, 1, 2}, {0, 3, 4}};
+  Inspection_report r = mrepair::inspect_polygon_soup(s.points, s.polygons);
+  expect_counts(r, {{"non_manifold_vertices", 1}, {"non_manifold_edges", 0}, {"boundary_edges", 6},
+                    {"boundary_loops", 1}, {"connected_components", 2}},
+                "bowtie");
+  // a T-junction crack with shared corners: l1 and l2 join two fans each
+  Soup c;
+  c.points = {Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(0, 1, 0),
+              Point(2, 0, 0), Point(2, 1, 0), Point(1, 0.5, 0)};
+  c.polygons = {{0, 1, 2}, {0, 2, 3}, {1, 4, 6}, {6, 4, 5}, {6, 5, 2}};
+  r = mrepair::inspect_polygon_soup(c.points, c.polygons);
+  expect_counts(r, {{"non_manifold_vertices", 2}, {"t_junctions", 1}, {"boundary_edges", 9},
+                    {"connected_components", 2}, {"duplicate_points", 0}},
+                "crack");
+}
+
+TEST(Inspect_soup, flipped_face_gives_three_inconsistent_edges)
+{
+  Soup s = grid(3, 3);
+  Polygon& p = s.polygons[cell_triangle(3, 1, 1)]; // interior triangle, 3 neighbours
+  std::swap(p[1], p[2]);
+  Inspection_report r = mrepair::inspect_polygon_soup(s.points, s.polygons);
+  expect_counts(r, {{"inconsistent_orientation_edges", 3}, {"non_manifold_edges", 0},
+                    {"non_manifold_vertices", 0}, {"boundary_edges", 12}, {"boundary_loops", 1},
+                    {"connected_components", 1}, {"spiked_vertices", 0}, {"duplicate_faces", 0}},
+                "flipped");
+  // the fold is measured with one normal reversed: the flat grid stays flat
+  EXPECT_NEAR(r.max_dihedral_angle, 0.0, 1e-9);
+  EXPECT_NEAR(r.area, 9.0, 1e-12);
+}
+
+TEST(Inspect_soup, duplicate_faces_both_orientations)
+{
+  Soup s = grid(1, 1); // (0,1,3), (0,3,2)
+  s.polygons.push_back({1, 3, 0}); // same as (0,1,3), rotated
+  s.polygons.push_back({0, 2, 3}); // (0,3,2) reversed
+  Inspection_report r = mrepair::inspect_polygon_soup(s.points, s.polygons);
+  // edge {0,3} has four faces; {0,1} and {1,3} are used twice 0->1 / 1->3;
+  // {0,2}, {2,3} have both directions; no boundary remains
+  expect_counts(r, {{"duplicate_faces", 2}, {"duplicate_faces_opposite", 1},
+                    {"non_manifold_edges", 1}, {"inconsistent_orientation_edges", 2},
+                    {"boundary_edges", 0}, {"non_manifold_vertices", 0},
+                    {"connected_components", 1}},
+                "duplicates");
+  EXPECT_TRUE(r.closed);
+  EXPECT_TRUE(std::isnan(r.volume)); // not a 2-manifold: no volume
+}
+
+TEST(Inspect_soup, degenerate_repeated_and_invalid_polygons)
+{
+  Soup s;
+  s.points = {Point(0, 0, 0), Point(1, 0, 0), Point(2, 0, 0),
+              Point(0, 0, 1), Point(1, 0, 1), Point(0, 1, 1)};
+  s.polygons = {{0, 1, 2}, {3, 4, 5}, {3, 3, 4}, {0, 1, 2, 1}, {3, 4, 99}, {3, 4}};
+  Inspection_report r = mrepair::inspect_polygon_soup(s.points, s.polygons);
+  EXPECT_EQ(r.status, Status::invalid_index);
+  expect_counts(r, {{"invalid_polygons", 2}, {"faces", 4}, {"degenerate_faces", 3},
+                    {"repeated_index_faces", 2}, {"isolated_vertices", 0},
+                    {"connected_components", 2}, {"duplicate_faces", 0}},
+                "degenerate");
+  // signed indices: a negative one is invalid
+  std::vector<std::vector<int>> signed_polys = {{0, 1, -1}, {3, 4, 5}};
+  r = mrepair::inspect_polygon_soup(s.points, signed_polys);
+  EXPECT_EQ(r.invalid_polygons, 1u);
+  EXPECT_EQ(r.faces, 1u);
+  EXPECT_EQ(r.isolated_vertices, 3u);
+}
+
+TEST(Inspect_soup, duplicate_points_and_empty_input)
+{
+  Soup s = grid(2, 1);
+  s.points.push_back(s.points[0]);  // 2 copies at point 0
+  s.points.push_back(s.points[0]);
+  s.points.push_back(Point(-0.0, 0, 0)); // -0 is the same location as +0
+  s.points.push_back(s.points[4]);
+  Inspection_report r = mrepair::inspect_polygon_soup(s.points, s.polygons);
+  expect_counts(r, {{"duplicate_points", 4}, {"isolated_vertices", 4}}, "duplicate points");
+
+  std::vector<Point> no_points;
+  std::vector<Polygon> no_polys;
+  EXPECT_EQ(mrepair::inspect_polygon_soup(no_points, no_polys).status, Status::empty_input);
+  EXPECT_EQ(mrepair::inspect_polygon_soup(s.points, no_polys).status, Status::empty_input);
+  EXPECT_EQ(mrepair::inspect_polygon_soup(s.points, no_polys).isolated_vertices, s.points.size());
+}
+
+TEST(Inspect_soup, bad_parameters)
+{
+  Soup s = grid(1, 1);
+  EXPECT_EQ(mrepair::inspect_polygon_soup(s.points, s.polygons, MP::spike_angle(-5.0)).status,
+            Status::invalid_parameter);
+  EXPECT_EQ(mrepair::inspect_polygon_soup(s.points, s.polygons, MP::t_junction_tolerance(
+                                                                    std::numeric_limits<double>::quiet_NaN()))
+                .status,
+            Status::invalid_parameter);
+}
+
+TEST(Inspect_soup, quads_use_newell_area)
+{
+  Soup s = grid(2, 3, 0.5, true);
+  Inspection_report r = mrepair::inspect_polygon_soup(s.points, s.polygons);
+  expect_counts(r, {{"faces", 6}, {"triangles", 0}, {"edges", 17}, {"boundary_edges", 10},
+                    {"degenerate_faces", 0}},
+                "quads");
+  EXPECT_NEAR(r.area, 1.5, 1e-12);
+  EXPECT_TRUE(std::isnan(r.min_angle)); // angles are measured on triangles only
+  Soup c = cube(2.0, true);
+  r = mrepair::inspect_polygon_soup(c.points, c.polygons);
+  EXPECT_TRUE(r.closed);
+  EXPECT_NEAR(r.volume, 8.0, 1e-12);
+  EXPECT_NEAR(r.max_dihedral_angle, 90.0, 1e-9);
+  EXPECT_EQ(r.spiked_vertices, 0u);
+  EXPECT_EQ(mrepair::inspect_polygon_soup(c.points, c.polygons, MP::spike_angle(80.0)).spiked_vertices, 8u);
+}
+
+// ---------------------------------------------------------------------------
+// Typed over Surface_mesh and Polyhedron_3: mesh path and soup path agree
+
+template <class C>
+class Inspect : public ::testing::Test
+{};
+TYPED_TEST_SUITE(Inspect, Mesh_configs);
+
+TYPED_TEST(Inspect, clean_grid)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = grid(4, 4);
+  expect_both<Mesh>(s, {{"vertices", 25}, {"faces", 32}, {"edges", 56}, {"boundary_edges", 16},
+                        {"boundary_loops", 1}, {"small_holes", 1}, {"connected_components", 1},
+                        {"small_components", 1}, {"non_manifold_vertices", 0}, {"duplicate_points", 0},
+                        {"near_degenerate_faces", 0}, {"collapsible_edges", 0}, {"spiked_vertices", 0},
+                        {"t_junctions", 0}, {"degenerate_faces", 0}, {"isolated_vertices", 0}},
+                    "grid");
+  Mesh m = to_mesh<Mesh>(s);
+  Inspection_report r = mrepair::inspect(m);
+  EXPECT_EQ(r.status, Status::ok);
+  EXPECT_TRUE(r.self_intersections_counted);
+  EXPECT_EQ(r.self_intersecting_pairs, 0u);
+  EXPECT_NEAR(r.min_angle, 45.0, 1e-9);
+  EXPECT_NEAR(r.small_angle_share, 0.0, 0.0);
+  EXPECT_NEAR(r.area, 16.0, 1e-12);
+  // 9 interior vertices, all of valence 6 in this triangulation
+  EXPECT_NEAR(r.mean_valence_deviation, 0.0, 1e-12);
+  EXPECT_NEAR(r.edge_length_mean, (40.0 + 16.0 * std::sqrt(2.0)) / 56.0, 1e-12);
+  EXPECT_FALSE(r.closed);
+  EXPECT_TRUE(std::isnan(r.volume));
+  EXPECT_TRUE(r.is_clean() == false); // the outer border is a small hole by the default threshold
+  EXPECT_EQ(mrepair::inspect(m, MP::max_hole_vertices(16, MP::min_component_faces(32))).small_holes, 0u);
+  EXPECT_EQ(mrepair::inspect(m, MP::max_hole_vertices(17, MP::min_component_faces(33))).small_components, 1u);
+}
+
+TYPED_TEST(Inspect, grid_with_one_face_hole)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = without_polygons(grid(4, 4), {cell_triangle(4, 1, 1)});
+  expect_both<Mesh>(s, {{"faces", 31}, {"boundary_edges", 19}, {"boundary_loops", 2},
+                        {"small_holes", 2}, {"connected_components", 1}, {"small_components", 1}},
+                    "one-face hole");
+  Mesh m = to_mesh<Mesh>(s);
+  Inspection_report r = mrepair::inspect(m, MP::max_hole_vertices(10, MP::min_component_faces(10)));
+  EXPECT_EQ(r.small_holes, 1u);
+  EXPECT_EQ(r.small_components, 0u);
+}
+
+TYPED_TEST(Inspect, grid_with_three_by_three_hole)
+{
+  using Mesh = typename TypeParam::Mesh;
+  std::set<std::size_t> hole;
+  for (std::size_t i = 2; i <= 4; ++i)
+    for (std::size_t j = 2; j <= 4; ++j) {
+      hole.insert(cell_triangle(7, i, j));
+      hole.insert(cell_triangle(7, i, j) + 1);
+    }
+  Soup with_points = without_polygons(grid(7, 7), hole);
+  // the 4 grid points inside the hole are no longer used
+  EXPECT_EQ(mrepair::inspect_polygon_soup(with_points.points, with_points.polygons).isolated_vertices, 4u);
+  Soup s = compacted(with_points);
+  expect_both<Mesh>(s, {{"faces", 80}, {"boundary_edges", 40}, {"boundary_loops", 2},
+                        {"small_holes", 2}, {"connected_components", 1}},
+                    "3x3 hole");
+  Mesh m = to_mesh<Mesh>(s);
+  EXPECT_EQ(mrepair::inspect(m, MP::max_hole_vertices(13)).small_holes, 1u); // the 12-edge loop
+  EXPECT_EQ(mrepair::inspect(m, MP::max_hole_vertices(12)).small_holes, 0u);
+  EXPECT_EQ(mrepair::inspect(m, MP::max_hole_vertices(29)).small_holes, 2u); // and the 28-edge one
+}
+
+TYPED_TEST(Inspect, two_components_one_tiny)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup tiny;
+  tiny.points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)};
+  tiny.polygons = {{0, 1, 2}};
+  Soup s = merged(grid(5, 5), translated(tiny, 10, 10, 0));
+  expect_both<Mesh>(s, {{"connected_components", 2}, {"small_components", 2}, {"boundary_loops", 2}},
+                    "two components");
+  Mesh m = to_mesh<Mesh>(s);
+  EXPECT_EQ(mrepair::inspect(m, MP::min_component_faces(10)).small_components, 1u);
+  EXPECT_EQ(mrepair::inspect(m, MP::min_component_faces(1)).small_components, 0u);
+}
+
+TYPED_TEST(Inspect, spike_raised_five_edge_lengths)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = grid(6, 6);
+  const std::size_t apex = grid_index(6, 3, 3);
+  s.points[apex] = Point(3, 3, 5);
+  // dihedral angles of this tall spike (the grid's diagonals make them uneven):
+  // 87.80 deg on 2 edges, 81.95 on 2, 78.69 on 4, 44.44 on 4 (hand computed)
+  Mesh m = to_mesh<Mesh>(s);
+  Inspection_report r = mrepair::inspect(m);
+  EXPECT_NEAR(r.max_dihedral_angle, 87.80, 0.01);
+  EXPECT_EQ(r.spiked_vertices, 0u); // below the default 100 deg: tall spikes need a lower threshold
+  EXPECT_EQ(mrepair::inspect(m, MP::spike_angle(85.0)).spiked_vertices, 3u);  // apex + 2
+  EXPECT_EQ(mrepair::inspect(m, MP::spike_angle(80.0)).spiked_vertices, 7u);  // apex + 6 ring
+  EXPECT_EQ(mrepair::inspect(m, MP::spike_angle(40.0)).spiked_vertices, 7u);
+  EXPECT_EQ(mrepair::inspect(m, MP::spike_angle(88.0)).spiked_vertices, 0u);
+  EXPECT_EQ(mrepair::inspect_polygon_soup(s.points, s.polygons, MP::spike_angle(80.0)).spiked_vertices, 7u);
+  EXPECT_EQ(r.self_intersecting_pairs, 0u);
+}
+
+TYPED_TEST(Inspect, sliver_faces)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = grid(4, 4);
+  const std::size_t v = grid_index(4, 2, 2);
+  // zero edge: |v w| = 0.05 < 0.1 x mean: both triangles on it
+  s.points[v] = Point(2.95, 2, 0);
+  expect_both<Mesh>(s, {{"near_degenerate_faces", 2}, {"collapsible_edges", 1}, {"degenerate_faces", 0}},
+                    "zero edge");
+  // skinny edge: |v w| = 0.2 is above 0.1 x mean (~0.11) but below 0.25 x local
+  // mean (~0.28); its opposite angle is 6.3 deg in one triangle, 11.3 in the other
+  s.points[v] = Point(2.8, 2, 0);
+  expect_both<Mesh>(s, {{"near_degenerate_faces", 1}, {"collapsible_edges", 1}}, "skinny edge");
+  Mesh m = to_mesh<Mesh>(s);
+  EXPECT_EQ(mrepair::inspect(m, MP::skinny_angle(12.0)).near_degenerate_faces, 2u);
+  EXPECT_EQ(mrepair::inspect(m, MP::skinny_angle(5.0)).near_degenerate_faces, 0u);
+  EXPECT_EQ(mrepair::inspect(m, MP::skinny_angle(5.0)).collapsible_edges, 0u);
+  EXPECT_EQ(mrepair::inspect(m, MP::zero_edge_factor(0.2)).near_degenerate_faces, 2u);
+}
+
+TYPED_TEST(Inspect, collinear_face)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = grid(2, 1);
+  s.points[1] = Point(0.5, 0.5, 0); // on the diagonal (0,0)-(1,1): triangle (0,1,4) is flat
+  expect_both<Mesh>(s, {{"degenerate_faces", 1}, {"repeated_index_faces", 0}}, "collinear");
+  Mesh m = to_mesh<Mesh>(s);
+  Inspection_report r = mrepair::inspect(m);
+  EXPECT_NEAR(r.min_angle, 0.0, 1e-12);
+  // CGAL reports the flat face as (f, f), not counted; the moved vertex also
+  // touches edge (0,4) of triangle (0,4,3), which both triangles on it
+  // intersect: 2 pairs
+  EXPECT_EQ(r.self_intersecting_pairs, 2u);
+}
+
+TYPED_TEST(Inspect, closed_icosphere)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const double radius = 2.0;
+  Soup s = icosphere(3, radius); // 1280 faces, 642 vertices
+  expect_both<Mesh>(s, {{"faces", 1280}, {"vertices", 642}, {"edges", 1920}, {"boundary_edges", 0},
+                        {"boundary_loops", 0}, {"small_holes", 0}, {"connected_components", 1},
+                        {"small_components", 0}, {"spiked_vertices", 0}, {"near_degenerate_faces", 0},
+                        {"non_manifold_vertices", 0}},
+                    "icosphere");
+  Mesh m = to_mesh<Mesh>(s);
+  Inspection_report r = mrepair::inspect(m);
+  EXPECT_TRUE(r.closed);
+  const double exact = 4.0 / 3.0 * CGAL_PI * radius * radius * radius;
+  EXPECT_NEAR(r.volume, exact, 0.02 * exact); // inscribed polyhedron: slightly smaller
+  EXPECT_LT(r.volume, exact);
+  EXPECT_NEAR(r.area, 4 * CGAL_PI * radius * radius, 0.02 * 4 * CGAL_PI * radius * radius);
+  EXPECT_EQ(r.self_intersecting_pairs, 0u);
+  EXPECT_NEAR(r.mean_valence_deviation, 12.0 / 642.0, 1e-12); // the 12 valence-5 vertices
+  EXPECT_LT(r.max_dihedral_angle, 20.0);
+  EXPECT_TRUE(r.is_clean());
+}
+
+TYPED_TEST(Inspect, pillow_is_a_duplicate_of_opposite_orientation)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  s.points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)};
+  s.polygons = {{0, 1, 2}, {0, 2, 1}};
+  expect_both<Mesh>(s, {{"duplicate_faces", 1}, {"duplicate_faces_opposite", 1}, {"boundary_edges", 0},
+                        {"inconsistent_orientation_edges", 0}, {"spiked_vertices", 3}},
+                    "pillow");
+  Mesh m = to_mesh<Mesh>(s);
+  Inspection_report r = mrepair::inspect(m);
+  EXPECT_TRUE(r.closed);
+  EXPECT_NEAR(r.volume, 0.0, 1e-15);
+  EXPECT_NEAR(r.max_dihedral_angle, 180.0, 1e-9);
+  // the two faces overlap across their shared edges: one pair, as CGAL says
+  EXPECT_EQ(r.self_intersecting_pairs, 1u);
+}
+
+// Self-intersections of a crumpled sphere (random radii): the same pairs as
+// PMP::self_intersections, without its (f, f) pairs of degenerate faces.
+TYPED_TEST(Inspect, self_intersections_agree_with_cgal)
+{
+  using Mesh = typename TypeParam::Mesh;
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  Soup s = icosphere(3, 1.0);
+  std::uint32_t seed = 12345;
+  for (auto& p : s.points) {
+    seed = seed * 1664525u + 1013904223u;
+    const double f = 0.6 + 0.8 * double(seed >> 8) / double(1u << 24);
+    p = Point(p.x() * f, p.y() * f, p.z() * f);
+  }
+  s.points[7] = s.points[8]; // and one degenerate (collapsed edge) region
+  Mesh m = to_mesh<Mesh>(s);
+  std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor,
+                        typename boost::graph_traits<Mesh>::face_descriptor>> pairs;
+  PMP::self_intersections(m, std::back_inserter(pairs));
+  std::size_t distinct = 0, degenerate = 0;
+  for (const auto& p : pairs) (p.first != p.second ? distinct : degenerate)++;
+  ASSERT_GT(distinct, 50u); // 72 with this seed
+  Inspection_report r = mrepair::inspect(m);
+  EXPECT_EQ(r.self_intersecting_pairs, distinct);
+  EXPECT_EQ(r.degenerate_faces, degenerate);
+  EXPECT_EQ(mrepair::inspect_polygon_soup(s.points, s.polygons).self_intersecting_pairs, distinct);
+}
+
+TYPED_TEST(Inspect, non_finite_and_isolated_vertices)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = grid(2, 2);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  s.points[grid_index(2, 1, 1)] = Point(nan, 0, 0); // the centre, in 6 triangles
+  s.points.push_back(Point(5, 5, 5));              // isolated
+  Inspection_report r = mrepair::inspect_polygon_soup(s.points, s.polygons);
+  EXPECT_EQ(r.status, Status::non_finite_input);
+  expect_counts(r, {{"non_finite_vertices", 1}, {"isolated_vertices", 1}, {"boundary_edges", 8},
+                    {"connected_components", 1}, {"degenerate_faces", 0}},
+                "nan soup");
+  EXPECT_NEAR(r.area, 1.0, 1e-12); // the two triangles away from the centre
+
+  Soup g = grid(2, 2);
+  Mesh m = to_mesh<Mesh>(g);
+  auto v = add_vertex(m);
+  put(get(CGAL::vertex_point, m), v, Point(5, 5, 5));
+  set_point(m, grid_index(2, 1, 1), Point(nan, 0, 0));
+  r = mrepair::inspect(m);
+  EXPECT_EQ(r.status, Status::non_finite_input);
+  expect_counts(r, {{"non_finite_vertices", 1}, {"isolated_vertices", 1}, {"boundary_edges", 8}},
+                "nan mesh");
+  EXPECT_FALSE(r.self_intersections_counted);
+  EXPECT_NEAR(r.area, 1.0, 1e-12);
+}
+
+TYPED_TEST(Inspect, self_intersections)
+{
+  using Mesh = typename TypeParam::Mesh;
+  // a triangle pierced by another
+  Soup s;
+  s.points = {Point(0, 0, 0), Point(2, 0, 0), Point(0, 2, 0),
+              Point(0.2, 0.5, -1), Point(0.8, 0.5, -1), Point(0.5, 0.5, 1)};
+  s.polygons = {{0, 1, 2}, {3, 4, 5}};
+  Mesh m = to_mesh<Mesh>(s);
+  Inspection_report r = mrepair::inspect(m);
+  EXPECT_TRUE(r.self_intersections_counted);
+  EXPECT_EQ(r.self_intersecting_pairs, 1u);
+  EXPECT_FALSE(mrepair::inspect(m, MP::count_self_intersections(false)).self_intersections_counted);
+  Inspection_report rs = mrepair::inspect_polygon_soup(s.points, s.polygons);
+  EXPECT_TRUE(rs.self_intersections_counted);
+  EXPECT_EQ(rs.self_intersecting_pairs, 1u);
+  EXPECT_FALSE(mrepair::inspect_polygon_soup(s.points, s.polygons, MP::count_self_intersections(false))
+                   .self_intersections_counted);
+
+  // a tetrahedron whose apex pokes through the bottom face of another: its
+  // three side faces each cross that face
+  Soup t;
+  t.points = {Point(0, 0, 0), Point(2, 0, 0), Point(0, 2, 0), Point(0, 0, 2),
+              Point(0.3, 0.3, -1), Point(0.9, 0.3, -1), Point(0.6, 0.9, -1), Point(0.5, 0.5, 0.5)};
+  t.polygons = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {4, 6, 5}, {4, 5, 7}, {4, 7, 6}, {5, 6, 7}};
+  Mesh m2 = to_mesh<Mesh>(t);
+  r = mrepair::inspect(m2);
+  EXPECT_EQ(r.self_intersecting_pairs, 3u);
+  EXPECT_EQ(r.connected_components, 2u);
+  EXPECT_TRUE(r.closed);
+  EXPECT_NEAR(r.volume, 8.0 / 6.0 + 0.6 * 0.6 * 1.5 / 6.0, 1e-12);
+}
+
+TYPED_TEST(Inspect, t_junction_between_patches)
+{
+  using Mesh = typename TypeParam::Mesh;
+  // left square; right square whose left side is split at (1, 0.5)
+  Soup s;
+  s.points = {Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(0, 1, 0),
+              Point(1, 0, 0), Point(2, 0, 0), Point(2, 1, 0), Point(1, 1, 0), Point(1, 0.5, 0)};
+  s.polygons = {{0, 1, 2}, {0, 2, 3}, {4, 5, 8}, {8, 5, 6}, {8, 6, 7}};
+  expect_both<Mesh>(s, {{"t_junctions", 1}, {"duplicate_points", 2}, {"boundary_edges", 9},
+                        {"boundary_loops", 2}, {"connected_components", 2}, {"non_manifold_vertices", 0}},
+                    "T-junction");
+  Mesh m = to_mesh<Mesh>(s);
+  // a tolerance smaller than the gap misses a vertex moved 0.01 off the edge
+  set_point(m, 8, Point(1.01, 0.5, 0));
+  EXPECT_EQ(mrepair::inspect(m).t_junctions, 0u); // default 1e-4 x diagonal
+  EXPECT_EQ(mrepair::inspect(m, MP::t_junction_tolerance(0.02)).t_junctions, 1u);
+  // ... and a tolerance larger than the distance to an endpoint does not count it
+  EXPECT_EQ(mrepair::inspect(m, MP::t_junction_tolerance(0.6)).t_junctions, 0u);
+}
+
+TYPED_TEST(Inspect, bowtie_mesh_vertex)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh m;
+  auto vpm = get(CGAL::vertex_point, m);
+  using VD = typename boost::graph_traits<Mesh>::vertex_descriptor;
+  std::vector<VD> v;
+  for (Point p : {Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(-1, 0, 0), Point(-1, -1, 0)}) {
+    v.push_back(add_vertex(m));
+    put(vpm, v.back(), p);
+  }
+  ASSERT_NE(CGAL::Euler::add_face(std::vector<VD>{v[0], v[1], v[2]}, m),
+            boost::graph_traits<Mesh>::null_face());
+  ASSERT_NE(CGAL::Euler::add_face(std::vector<VD>{v[0], v[3], v[4]}, m),
+            boost::graph_traits<Mesh>::null_face());
+  Inspection_report r = mrepair::inspect(m);
+  expect_counts(r, {{"non_manifold_vertices", 1}, {"boundary_edges", 6}, {"connected_components", 2},
+                    {"faces", 2}, {"vertices", 5}},
+                "bowtie mesh");
+  // border cycles as CGAL links them
+  std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor> cycles;
+  CGAL::Polygon_mesh_processing::extract_boundary_cycles(m, std::back_inserter(cycles));
+  EXPECT_EQ(r.boundary_loops, cycles.size());
+}
+
+TYPED_TEST(Inspect, empty_mesh)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh m;
+  EXPECT_EQ(mrepair::inspect(m).status, Status::empty_input);
+}
+
+// On a real scan-like mesh with holes: soup and mesh agree, and the counts
+// match CGAL's own functions.
+TYPED_TEST(Inspect, agrees_with_cgal_on_elephant)
+{
+  using Mesh = typename TypeParam::Mesh;
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  const std::string path = std::string(MREPAIR_CGAL_DATA_DIR) + "/elephant-with-holes.off";
+  if (!std::ifstream(path)) GTEST_SKIP() << "no CGAL sample data";
+  Mesh m;
+  ASSERT_TRUE(CGAL::IO::read_polygon_mesh(path, m));
+  Inspection_report r = mrepair::inspect(m);
+  std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor> cycles;
+  PMP::extract_boundary_cycles(m, std::back_inserter(cycles));
+  EXPECT_EQ(r.boundary_loops, cycles.size());
+  std::size_t border = 0;
+  for (auto h : halfedges(m)) border += is_border(h, m);
+  EXPECT_EQ(r.boundary_edges, border);
+  auto fcc = get(CGAL::dynamic_face_property_t<std::size_t>(), m);
+  EXPECT_EQ(r.connected_components, PMP::connected_components(m, fcc));
+  std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor,
+                        typename boost::graph_traits<Mesh>::face_descriptor>> si;
+  PMP::self_intersections(m, std::back_inserter(si));
+  EXPECT_EQ(r.self_intersecting_pairs, si.size());
+  std::set<std::array<double, 3>> distinct;
+  for (auto v : vertices(m)) {
+    auto p = get(CGAL::vertex_point, m, v);
+    distinct.insert({p.x(), p.y(), p.z()});
+  }
+  EXPECT_EQ(r.duplicate_points, vertices(m).size() - distinct.size());
+
+  // the soup of the same faces gives the same counts (self-intersections aside)
+  std::vector<Point> pts;
+  std::vector<Polygon> polys;
+  std::map<typename boost::graph_traits<Mesh>::vertex_descriptor, std::size_t> id;
+  for (auto v : vertices(m)) {
+    id[v] = pts.size();
+    auto p = get(CGAL::vertex_point, m, v);
+    pts.emplace_back(p.x(), p.y(), p.z());
+  }
+  for (auto f : faces(m)) {
+    polys.emplace_back();
+    for (auto v : CGAL::vertices_around_face(halfedge(f, m), m)) polys.back().push_back(id[v]);
+  }
+  Inspection_report rs = mrepair::inspect_polygon_soup(pts, polys);
+  mrepair::Report a, b;
+  r.to_report(a);
+  rs.to_report(b);
+  auto fa = a.flatten(), fb = b.flatten();
+  ASSERT_EQ(fa.size(), fb.size());
+  for (std::size_t i = 0; i < fa.size(); ++i) {
+    if (fa[i].first == "kind" || fa[i].first == "defects.self_intersecting_pairs") continue;
+    EXPECT_EQ(fa[i], fb[i]);
+  }
+}

@@ -1,0 +1,110 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// `mrepair inspect INPUT [--json] [--report F] [thresholds]`: counts the
+// defects of a file read as a polygon soup; when the soup is a polygon mesh,
+// also builds a Surface_mesh and reports what only a mesh has (its border
+// halfedge cycles).
+#include "cli.h"
+
+#include <mrepair/inspect.h>
+#include <mrepair/io.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Kernel = CGAL::Epick;
+using Point = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+namespace MP = mrepair::parameters;
+namespace cli = mrepair::cli;
+
+const std::vector<cli::Option> options = {
+    {"spike-angle", true, "dihedral angle in degrees above which an edge is spiked (100)"},
+    {"small-hole", true, "boundary loops with fewer edges are small holes (100)"},
+    {"small-component", true, "components with fewer faces are small (400)"},
+    {"t-junction-tolerance", true, "distance of a T-junction (default 1e-4 x bbox diagonal)"},
+    {"no-self-intersections", false, "skip the self-intersection test"},
+};
+
+int run(int argc, char** argv);
+
+const cli::Command command{"inspect", "INPUT [--json] [--report FILE] [thresholds]",
+                           "count the defects of a mesh or polygon soup", run};
+cli::Registrar reg{command};
+
+long long non_negative(const cli::Arguments& a, const std::string& name, long long fallback)
+{
+  long long v = a.get_int(name, fallback);
+  if (v < 0) throw cli::Usage_error("--" + name + " expects a non-negative integer");
+  return v;
+}
+
+int run(int argc, char** argv)
+{
+  cli::Arguments args = cli::parse(argc, argv, 1, options, 1, 1);
+  if (args.has("help")) {
+    cli::print_help(command, options);
+    return 0;
+  }
+  const double spike = args.get_double("spike-angle", 100.0);
+  if (spike < 0 || spike > 180) throw cli::Usage_error("--spike-angle expects degrees in [0, 180]");
+  const std::size_t hole = static_cast<std::size_t>(non_negative(args, "small-hole", 100));
+  const std::size_t comp = static_cast<std::size_t>(non_negative(args, "small-component", 400));
+  const double tol = args.get_double("t-junction-tolerance", -1.0); // < 0: relative default
+  if (args.has("t-junction-tolerance") && tol < 0)
+    throw cli::Usage_error("--t-junction-tolerance expects a non-negative distance");
+  const bool self_intersections = !args.has("no-self-intersections");
+  const std::string input = args.positional[0];
+
+  cli::Progress_printer printer(!args.has("quiet") && !args.has("json"));
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  mrepair::Io_result io;
+  printer.start_phase("read");
+  io = mrepair::read_polygon_soup(input, points, polygons);
+  printer.end_phase("read");
+  if (io.status != mrepair::Status::ok && io.status != mrepair::Status::non_finite_input &&
+      io.status != mrepair::Status::invalid_index)
+    return cli::fail(io.message.empty() ? input + ": " + mrepair::to_string(io.status) : io.message);
+
+  auto thresholds = [&](bool count_si) {
+    return MP::spike_angle(spike, MP::max_hole_vertices(hole, MP::min_component_faces(comp,
+           MP::t_junction_tolerance(tol, MP::count_self_intersections(count_si)))))
+        .visitor(std::ref(printer));
+  };
+
+  mrepair::Report report;
+  io.to_report(report.section("file"));
+  mrepair::Inspection_report soup = mrepair::inspect_polygon_soup(points, polygons, thresholds(self_intersections));
+  soup.to_report(report);
+
+  // The mesh view: only when the polygons form a valid polygon mesh.
+  mrepair::Report& mesh_section = report.section("mesh");
+  const bool is_mesh = soup.invalid_polygons == 0 && !polygons.empty() &&
+                       CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(polygons);
+  mesh_section.add("built", is_mesh);
+  if (is_mesh) {
+    Mesh mesh;
+    printer.start_phase("build mesh");
+    CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+    printer.end_phase("build mesh");
+    // the soup pass counted everything else (self-intersections included)
+    mrepair::Inspection_report m = mrepair::inspect(mesh, thresholds(false));
+    mesh_section.add("boundary_loops", m.boundary_loops);
+    mesh_section.add("small_holes", m.small_holes);
+  } else {
+    mesh_section.add("reason", soup.invalid_polygons > 0
+                                   ? "invalid polygons"
+                                   : "not a manifold, consistently oriented polygon mesh");
+  }
+  if (!cli::emit_report(args, report)) return 1;
+  return soup.status == mrepair::Status::invalid_parameter ? 1 : 0;
+}
+
+} // namespace
