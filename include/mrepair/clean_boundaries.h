@@ -1,0 +1,347 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_CLEAN_BOUNDARIES_H
+#define MREPAIR_CLEAN_BOUNDARIES_H
+
+#include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+#include <mrepair/parameters.h>
+#include <mrepair/remove_small_components.h>
+#include <mrepair/report.h>
+#include <mrepair/status.h>
+#include <mrepair/visitors.h>
+
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/boost/graph/properties.h>
+#include <CGAL/Named_function_parameters.h>
+
+#include <cstddef>
+#include <vector>
+
+/// \file clean_boundaries.h
+/// RameshCleaner 3.3: removal of bad boundary vertices inside a confidence
+/// region around the boundaries, removal of the small components this leaves,
+/// and restricted Laplacian smoothing of the boundary 1-ring.
+
+MREPAIR_ADD_NAMED_PARAMETER(boundary_dihedral_angle)       // degrees (120)
+MREPAIR_ADD_NAMED_PARAMETER(confidence_rings)              // n of the n-ring region (4)
+MREPAIR_ADD_NAMED_PARAMETER(max_boundary_rounds)           // removal rounds (30)
+MREPAIR_ADD_NAMED_PARAMETER(boundary_component_faces)      // components removed in the region (40)
+MREPAIR_ADD_NAMED_PARAMETER(boundary_smoothing_iterations) // (10)
+MREPAIR_ADD_NAMED_PARAMETER(boundary_smoothing_step)       // (0.02)
+
+namespace mrepair {
+
+/// \ingroup mrepair_clean
+/// what `clean_boundaries()` did.
+struct Boundary_cleaning_result
+{
+  Status status = Status::ok;
+  std::size_t boundary_vertices = 0;     ///< boundary vertices found at the start
+  std::size_t region_vertices = 0;       ///< vertices of the confidence region
+  std::size_t rounds = 0;                ///< removal rounds run
+  std::size_t bad_vertices_removed = 0;  ///< bad boundary vertices whose faces were removed
+  std::size_t bad_vertices_left = 0;     ///< bad boundary vertices left when the round cap hit
+  std::size_t faces_removed = 0;         ///< faces removed with bad vertices (pinch fixes included)
+  std::size_t pinch_faces_removed = 0;   ///< of which: smaller fans removed at would-be pinched vertices
+  std::size_t components_removed = 0;    ///< small components removed in the region
+  std::size_t component_faces_removed = 0;
+  std::size_t vertices_smoothed = 0;
+
+  void to_report(Report& r) const
+  {
+    r.add("status", status);
+    r.add("boundary_vertices", boundary_vertices);
+    r.add("region_vertices", region_vertices);
+    r.add("rounds", rounds);
+    r.add("bad_vertices_removed", bad_vertices_removed);
+    r.add("bad_vertices_left", bad_vertices_left);
+    r.add("faces_removed", faces_removed);
+    r.add("pinch_faces_removed", pinch_faces_removed);
+    r.add("components_removed", components_removed);
+    r.add("component_faces_removed", component_faces_removed);
+    r.add("vertices_smoothed", vertices_smoothed);
+  }
+};
+
+namespace internal {
+namespace clean_pipeline {
+
+// A boundary vertex is bad (RameshCleaner 3.3) when a) its valence is 2, b) an
+// incident edge has a dihedral angle above `max_angle`, or c) it has more than
+// two incident boundary edges.
+template <typename PM, typename VPM>
+bool is_bad_boundary_vertex(typename boost::graph_traits<PM>::vertex_descriptor v, const PM& pm,
+                            const VPM& vpm, double max_angle)
+{
+  std::size_t valence = 0, border_edges = 0;
+  bool sharp = false;
+  for (auto h : CGAL::halfedges_around_target(halfedge(v, pm), pm)) {
+    ++valence;
+    if (is_border_edge(h, pm))
+      ++border_edges;
+    else if (!sharp && dihedral_angle_deg(h, pm, vpm) > max_angle)
+      sharp = true;
+  }
+  if (border_edges == 0) return false;
+  return valence == 2 || sharp || border_edges > 2;
+}
+
+// Collects each boundary vertex once (order of the halfedge scan).
+template <typename PM, typename VMark>
+void collect_boundary_vertices(const PM& pm, VMark& seen,
+                               std::vector<typename boost::graph_traits<PM>::vertex_descriptor>& out)
+{
+  out.clear();
+  for (auto h : halfedges(pm))
+    if (is_border(h, pm)) {
+      auto v = target(h, pm);
+      if (!get(seen, v)) {
+        put(seen, v, true);
+        out.push_back(v);
+      }
+    }
+  for (auto v : out) put(seen, v, false);
+}
+
+/// Restricted uniform Laplacian (RameshCleaner eq. 1) on the boundary
+/// vertices and their 1-ring: boundary vertices average only their neighbours
+/// across boundary edges (no shrinkage into the surface), others their whole
+/// 1-ring. Jacobi steps of `step` x L(v). Returns the number of vertices moved.
+template <typename PM, typename VPM, typename Observer = No_edit_observer>
+std::size_t smooth_boundary_ring(PM& pm, const VPM& vpm, std::size_t iterations, double step,
+                                 Observer* observer = nullptr)
+{
+  using vertex_descriptor = typename boost::graph_traits<PM>::vertex_descriptor;
+  if (iterations == 0 || step == 0.) return 0;
+  auto idx = get(CGAL::dynamic_vertex_property_t<int>(), pm);
+  auto seen = get(CGAL::dynamic_vertex_property_t<bool>(), pm);
+  for (vertex_descriptor v : vertices(pm)) {
+    put(idx, v, -1);
+    put(seen, v, false);
+  }
+  std::vector<vertex_descriptor> set;
+  collect_boundary_vertices(pm, seen, set);
+  const std::size_t nb = set.size();
+  for (std::size_t i = 0; i < nb; ++i) put(idx, set[i], int(i));
+  for (std::size_t i = 0; i < nb; ++i)
+    for (vertex_descriptor w : CGAL::vertices_around_target(halfedge(set[i], pm), pm))
+      if (get(idx, w) < 0) {
+        put(idx, w, int(set.size()));
+        set.push_back(w);
+      }
+  // Neighbour lists (CSR) as indices into `pos`; vertices outside the set
+  // are appended as fixed entries.
+  std::vector<Vec3> pos;
+  pos.reserve(set.size() * 2);
+  for (vertex_descriptor v : set) pos.push_back(point(vpm, v));
+  std::vector<std::size_t> offs(set.size() + 1, 0);
+  std::vector<int> nbr;
+  nbr.reserve(set.size() * 6);
+  std::vector<vertex_descriptor> fixed;
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    vertex_descriptor v = set[i];
+    const bool boundary = i < nb;
+    for (auto h : CGAL::halfedges_around_target(halfedge(v, pm), pm)) {
+      if (boundary && !is_border_edge(h, pm)) continue;
+      vertex_descriptor w = source(h, pm);
+      int j = get(idx, w);
+      if (j < 0) {
+        j = int(pos.size());
+        put(idx, w, j);
+        pos.push_back(point(vpm, w));
+        fixed.push_back(w);
+      }
+      nbr.push_back(j);
+    }
+    offs[i + 1] = nbr.size();
+  }
+  std::vector<Vec3> next(set.size());
+  for (std::size_t it = 0; it < iterations; ++it) {
+    for (std::size_t i = 0; i < set.size(); ++i) {
+      const std::size_t k = offs[i + 1] - offs[i];
+      if (k == 0) { next[i] = pos[i]; continue; }
+      Vec3 c{0, 0, 0};
+      for (std::size_t a = offs[i]; a < offs[i + 1]; ++a) c = add(c, pos[nbr[a]]);
+      c = mul(c, 1. / double(k));
+      next[i] = add(pos[i], mul(sub(c, pos[i]), step));
+    }
+    std::copy(next.begin(), next.end(), pos.begin());
+  }
+  if (observer) observer->before(set);
+  for (std::size_t i = 0; i < set.size(); ++i) set_point(vpm, set[i], pos[i]);
+  if (observer) observer->after(set);
+  return set.size();
+}
+
+}  // namespace clean_pipeline
+}  // namespace internal
+
+/// \ingroup mrepair_clean
+/// cleans and smooths the boundaries of `pmesh` (RameshCleaner 3.3).
+///
+/// \code
+/// R <- n-ring of the boundary vertices (the confidence region)
+/// C <- boundary vertices
+/// repeat at most max_boundary_rounds times:
+///   B <- bad vertices of C inside R   (valence 2, or an incident dihedral
+///                                      angle > boundary_dihedral_angle, or
+///                                      more than 2 incident boundary edges)
+///   if B is empty: stop
+///   remove the faces of B; where a vertex would be pinched (two fans), also
+///   remove its smaller fans; C <- surviving vertices of removed faces
+/// remove the components with < boundary_component_faces faces that touch a boundary
+/// smooth the boundary 1-ring with the restricted uniform Laplacian
+/// \endcode
+/// The mesh stays a valid manifold mesh after every removal.
+///
+/// \tparam PolygonMesh model of `MutableFaceGraph` (triangles expected)
+/// \param np optional:
+///   - `vertex_point_map` (default: internal point map)
+///   - `boundary_dihedral_angle` (double, degrees, default 120): dihedral angle
+///     (between face normals) above which an incident edge makes a boundary vertex bad
+///   - `confidence_rings` (std::size_t, default 4): n of the n-ring region
+///   - `max_boundary_rounds` (std::size_t, default 30)
+///   - `boundary_component_faces` (std::size_t, default 40): components with
+///     fewer faces touching a boundary are removed afterwards (0: none)
+///   - `boundary_smoothing_iterations` (std::size_t, default 10)
+///   - `boundary_smoothing_step` (double, default 0.02)
+///   - `visitor`: phase "clean_boundaries"; `stop_requested()` polled between rounds
+/// \return `Boundary_cleaning_result`: status `ok`, `partial` (round cap hit
+///   with bad vertices left), `non_finite_input` (a region vertex has a
+///   non-finite coordinate; mesh untouched), `invalid_parameter`, `cancelled`
+template <typename PolygonMesh,
+          typename NamedParameters = CGAL::parameters::Default_named_parameters>
+Boundary_cleaning_result clean_boundaries(
+    PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using GT = boost::graph_traits<PolygonMesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+  namespace SC = internal::clean_pipeline;
+
+  internal::Visitor_handle<NamedParameters> visitor(np);
+  internal::Phase_scope<internal::Visitor_handle<NamedParameters>> phase(visitor,
+                                                                         "clean_boundaries");
+  auto vpm = CGAL::parameters::choose_parameter(
+      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+      get_property_map(CGAL::vertex_point, pmesh));
+  const double max_angle = internal::get_or(np, internal_np::boundary_dihedral_angle, 120.);
+  const std::size_t rings = internal::get_or(np, internal_np::confidence_rings, std::size_t(4));
+  const std::size_t max_rounds =
+      internal::get_or(np, internal_np::max_boundary_rounds, std::size_t(30));
+  const std::size_t comp_faces =
+      internal::get_or(np, internal_np::boundary_component_faces, std::size_t(40));
+  const std::size_t smooth_it =
+      internal::get_or(np, internal_np::boundary_smoothing_iterations, std::size_t(10));
+  const double step = internal::get_or(np, internal_np::boundary_smoothing_step, 0.02);
+
+  auto observer = SC::edit_observer(np);
+  Boundary_cleaning_result r;
+  if (!(max_angle >= 0. && max_angle <= 180.) || !(step >= 0. && step <= 1.)) {
+    r.status = Status::invalid_parameter;
+    return r;
+  }
+
+  // Boundary vertices and the confidence region (BFS to depth `rings`).
+  auto seen = get(CGAL::dynamic_vertex_property_t<bool>(), pmesh);
+  auto region = get(CGAL::dynamic_vertex_property_t<bool>(), pmesh);
+  for (vertex_descriptor v : vertices(pmesh)) {
+    put(seen, v, false);
+    put(region, v, false);
+  }
+  std::vector<vertex_descriptor> boundary;
+  SC::collect_boundary_vertices(pmesh, seen, boundary);
+  r.boundary_vertices = boundary.size();
+  if (boundary.empty()) return r;
+  {
+    std::vector<vertex_descriptor> layer = boundary, next_layer;
+    for (vertex_descriptor v : layer) put(region, v, true);
+    r.region_vertices = layer.size();
+    for (std::size_t d = 0; d < rings && !layer.empty(); ++d) {
+      next_layer.clear();
+      for (vertex_descriptor v : layer)
+        for (vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, pmesh), pmesh))
+          if (!get(region, w)) {
+            put(region, w, true);
+            next_layer.push_back(w);
+          }
+      r.region_vertices += next_layer.size();
+      layer.swap(next_layer);
+    }
+  }
+  // Geometry is read on the region and its 1-ring only: check it is finite
+  // there before the first angle is computed.
+  for (vertex_descriptor v : boundary)
+    if (!SC::is_finite_point(vpm, v)) {
+      r.status = Status::non_finite_input;
+      return r;
+    }
+  {
+    bool finite = true;
+    for (vertex_descriptor v : vertices(pmesh))
+      if (get(region, v) && !SC::is_finite_point(vpm, v)) { finite = false; break; }
+    if (!finite) {
+      r.status = Status::non_finite_input;
+      return r;
+    }
+  }
+
+  // Iterative removal of bad boundary vertices inside the region.
+  auto fmark = get(CGAL::dynamic_face_property_t<char>(), pmesh);
+  for (face_descriptor f : faces(pmesh)) put(fmark, f, char(0));
+  std::vector<vertex_descriptor> candidates = boundary, bad, survivors;
+  std::vector<face_descriptor> doomed;
+  while (!candidates.empty()) {
+    if (visitor.stop_requested()) {
+      r.status = Status::cancelled;
+      return r;
+    }
+    bad.clear();
+    for (vertex_descriptor v : candidates) {
+      if (get(seen, v)) continue;  // listed twice
+      put(seen, v, true);
+      if (get(region, v) && SC::is_bad_boundary_vertex(v, pmesh, vpm, max_angle)) bad.push_back(v);
+    }
+    for (vertex_descriptor v : candidates) put(seen, v, false);
+    if (bad.empty()) break;
+    if (r.rounds == max_rounds) {
+      r.bad_vertices_left = bad.size();
+      r.status = Status::partial;
+      break;
+    }
+    ++r.rounds;
+    doomed.clear();
+    for (vertex_descriptor v : bad)
+      for (auto h : CGAL::halfedges_around_target(halfedge(v, pmesh), pmesh))
+        if (!is_border(h, pmesh)) doomed.push_back(face(h, pmesh));
+    survivors.clear();
+    std::size_t extra = 0;
+    r.faces_removed +=
+        SC::remove_faces_without_pinches(pmesh, doomed, fmark, extra, &survivors, observer);
+    r.pinch_faces_removed += extra;
+    r.bad_vertices_removed += bad.size();
+    candidates.swap(survivors);
+    visitor.progress(double(r.rounds) / double(max_rounds + 1));
+  }
+
+  // Small components left near the boundaries (every component with a
+  // boundary has a boundary face, so seeding from those finds them all).
+  if (comp_faces > 1) {
+    std::vector<face_descriptor> seeds;
+    for (auto h : halfedges(pmesh))
+      if (is_border(h, pmesh)) seeds.push_back(face(opposite(h, pmesh), pmesh));
+    Small_components_result c =
+        SC::remove_small_components_seeded(pmesh, seeds, comp_faces, observer);
+    r.components_removed = c.components_removed;
+    r.component_faces_removed = c.faces_removed;
+  }
+
+  r.vertices_smoothed = SC::smooth_boundary_ring(pmesh, vpm, smooth_it, step, observer);
+  visitor.progress(1.);
+  return r;
+}
+
+}  // namespace mrepair
+
+#endif  // MREPAIR_CLEAN_BOUNDARIES_H

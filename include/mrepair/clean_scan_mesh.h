@@ -1,0 +1,447 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_CLEAN_SCAN_MESH_H
+#define MREPAIR_CLEAN_SCAN_MESH_H
+
+#include <mrepair/clean_boundaries.h>
+#include <mrepair/fill_small_holes.h>
+#include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+#include <mrepair/internal/clean_scan_mesh/spike_steps.h>
+#include <mrepair/parameters.h>
+#include <mrepair/remove_small_components.h>
+#include <mrepair/report.h>
+#include <mrepair/status.h>
+#include <mrepair/visitors.h>
+
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+/// \file clean_scan_mesh.h
+/// The RameshCleaner pipeline (section 4): preprocessing, then iterations of
+/// relax spikes, remove unrelaxable spikes, clean boundaries, remove small
+/// components, fill small holes, fix near-degenerate faces, relax spikes
+/// again; garbage collection at the end.
+
+MREPAIR_ADD_NAMED_PARAMETER(clean_steps)           // unsigned mask of mrepair::Clean_step (all)
+MREPAIR_ADD_NAMED_PARAMETER(max_clean_iterations)  // iteration cap (5)
+MREPAIR_ADD_NAMED_PARAMETER(collect_garbage)       // bool, Surface_mesh::collect_garbage at the end (true)
+
+namespace mrepair {
+
+/// \ingroup mrepair_clean
+/// the steps of `clean_scan_mesh()`, in pipeline order; combine as a mask.
+enum Clean_step : unsigned {
+  clean_step_remove_degenerate_vertices = 1u << 0,  ///< non-finite and isolated vertices (preprocessing)
+  clean_step_relax_spikes = 1u << 1,                ///< 3.7
+  clean_step_remove_unrelaxable_spikes = 1u << 2,   ///< 3.8
+  clean_step_clean_boundaries = 1u << 3,            ///< 3.3
+  clean_step_remove_small_components = 1u << 4,     ///< 3.2
+  clean_step_fill_small_holes = 1u << 5,            ///< 3.4, 3.5
+  clean_step_fix_near_degenerate_faces = 1u << 6,   ///< 3.6
+  clean_step_relax_spikes_again = 1u << 7,          ///< 3.7 at the end of each iteration
+  clean_step_all = 0xFFu
+};
+
+constexpr std::size_t number_of_clean_steps = 8;
+
+/// returns the stable name of step number `i` (0 = remove_degenerate_vertices).
+inline const char* clean_step_name(std::size_t i)
+{
+  static const char* names[number_of_clean_steps] = {
+      "remove_degenerate_vertices", "relax_spikes",     "remove_unrelaxable_spikes",
+      "clean_boundaries",           "remove_small_components", "fill_small_holes",
+      "fix_near_degenerate_faces",  "relax_spikes_again"};
+  return i < number_of_clean_steps ? names[i] : "unknown";
+}
+
+/// parses a step name (as printed by `clean_step_name`; "relax_spikes" also
+/// selects "relax_spikes_again") into a mask; 0 when unknown.
+inline unsigned parse_clean_step(const std::string& name)
+{
+  unsigned m = 0;
+  for (std::size_t i = 0; i < number_of_clean_steps; ++i)
+    if (name == clean_step_name(i)) m |= 1u << i;
+  if (name == "relax_spikes") m |= clean_step_relax_spikes_again;
+  return m;
+}
+
+/// \ingroup mrepair_clean
+/// per-step totals over all iterations of `clean_scan_mesh()`.
+struct Clean_step_stats
+{
+  bool enabled = false;
+  bool available = true;   ///< false when the step's implementation is not built in
+  std::size_t runs = 0;
+  std::size_t changes = 0; ///< elements moved, removed, collapsed or added
+  double seconds = 0;
+  Status last_status = Status::ok;
+  Report last_report;      ///< result of the last run
+};
+
+/// \ingroup mrepair_clean
+/// what `clean_scan_mesh()` did.
+struct Scan_cleaning_result
+{
+  Status status = Status::ok;
+  std::string message;
+  std::size_t iterations = 0;
+  bool converged = false;  ///< the last iteration changed nothing (else the cap was hit)
+  std::size_t vertices_before = 0, faces_before = 0, vertices_after = 0, faces_after = 0;
+  std::size_t non_finite_vertices_removed = 0;
+  std::size_t isolated_vertices_removed = 0;
+  std::size_t faces_removed_with_non_finite = 0;
+  std::array<Clean_step_stats, number_of_clean_steps> steps;
+  Small_components_result components;   ///< totals over iterations
+  Boundary_cleaning_result boundaries;  ///< totals over iterations
+  Hole_filling_result holes;            ///< totals; open_holes from the last run
+  double seconds = 0;
+
+  void to_report(Report& r) const
+  {
+    r.add("status", status);
+    if (!message.empty()) r.add("message", message);
+    r.add("iterations", iterations);
+    r.add("converged", converged);
+    r.add("vertices_before", vertices_before);
+    r.add("faces_before", faces_before);
+    r.add("vertices_after", vertices_after);
+    r.add("faces_after", faces_after);
+    r.add("non_finite_vertices_removed", non_finite_vertices_removed);
+    r.add("isolated_vertices_removed", isolated_vertices_removed);
+    r.add("faces_removed_with_non_finite", faces_removed_with_non_finite);
+    r.add("seconds", seconds);
+    Report& st = r.section("steps");
+    for (std::size_t i = 0; i < number_of_clean_steps; ++i) {
+      const Clean_step_stats& s = steps[i];
+      Report& x = st.section(clean_step_name(i));
+      x.add("enabled", s.enabled);
+      if (!s.available) x.add("available", false);
+      x.add("runs", s.runs);
+      x.add("changes", s.changes);
+      x.add("seconds", s.seconds);
+      if (s.runs) x.section("last") = s.last_report;
+    }
+    components.to_report(r.section("small_components"));
+    boundaries.to_report(r.section("boundaries"));
+    holes.to_report(r.section("holes"));
+  }
+};
+
+namespace internal {
+namespace clean_pipeline {
+
+// Hands progress and cancellation of a sub-step to the pipeline's visitor;
+// phases are the pipeline's own (one per step), so nested ones are dropped.
+template <typename Handle>
+struct Forwarding_visitor : Default_visitor
+{
+  Handle* h;
+  explicit Forwarding_visitor(Handle* handle) : h(handle) {}
+  void start_phase(const char*) {}
+  void end_phase(const char*) {}
+  void progress(double f) { h->progress(f); }
+  bool stop_requested() { return h->stop_requested(); }
+};
+
+template <typename P>
+void collect_garbage_of(CGAL::Surface_mesh<P>& m) { m.collect_garbage(); }
+template <typename PM>
+void collect_garbage_of(PM&) {}
+
+inline void add_totals(Small_components_result& a, const Small_components_result& b)
+{
+  a.components_removed += b.components_removed;
+  a.faces_removed += b.faces_removed;
+  a.vertices_removed += b.vertices_removed;
+  a.kept_largest = a.kept_largest || b.kept_largest;
+  if (b.status != Status::ok) a.status = b.status;
+}
+
+inline void add_totals(Boundary_cleaning_result& a, const Boundary_cleaning_result& b)
+{
+  a.boundary_vertices = b.boundary_vertices;  // of the last run
+  a.region_vertices = b.region_vertices;
+  a.rounds += b.rounds;
+  a.bad_vertices_removed += b.bad_vertices_removed;
+  a.bad_vertices_left = b.bad_vertices_left;
+  a.faces_removed += b.faces_removed;
+  a.pinch_faces_removed += b.pinch_faces_removed;
+  a.components_removed += b.components_removed;
+  a.component_faces_removed += b.component_faces_removed;
+  a.vertices_smoothed += b.vertices_smoothed;
+  a.status = b.status;
+}
+
+inline void add_totals(Hole_filling_result& a, const Hole_filling_result& b)
+{
+  a.holes_found += b.holes_found;
+  a.holes_too_large = b.holes_too_large;  // of the last run
+  a.holes_filled += b.holes_filled;
+  a.aborted_fills += b.aborted_fills;
+  a.enlargements += b.enlargements;
+  a.enlargement_faces_removed += b.enlargement_faces_removed;
+  a.faces_added += b.faces_added;
+  a.vertices_added += b.vertices_added;
+  a.open_holes = b.open_holes;
+  a.status = b.status;
+}
+
+}  // namespace clean_pipeline
+}  // namespace internal
+
+/// \ingroup mrepair_clean
+/// cleans a scanned triangle mesh with the RameshCleaner pipeline (section 4).
+///
+/// \code
+/// remove non-finite vertices (with their faces) and isolated vertices
+/// repeat at most max_clean_iterations times:
+///   relax spikes                     (relax_spikes.h, 3.7)
+///   remove unrelaxable spikes        (relax_spikes.h, 3.8)
+///   clean boundaries                 (clean_boundaries.h, 3.3)
+///   remove small components          (remove_small_components.h, 3.2)
+///   fill small holes                 (fill_small_holes.h, 3.4, 3.5)
+///   fix near-degenerate faces        (repair_near_degenerate_faces.h, 3.6)
+///   relax spikes again               (3.7)
+///   stop when the iteration changed nothing, or changed exactly what the
+///   previous one did (a cycle: nothing will converge further)
+/// collect garbage (Surface_mesh)
+/// \endcode
+/// Holes with `max_hole_vertices` vertices or more are never filled and
+/// components with `min_component_faces` faces or more never removed: large
+/// holes are only polished, as the paper argues. Every step can be disabled.
+///
+/// \tparam PolygonMesh model of `MutableFaceGraph`, a triangle mesh
+/// \param pmesh a valid triangle mesh (manifold, as CGAL halfedge meshes are)
+/// \param np optional:
+///   - `vertex_point_map` (default: internal point map)
+///   - `clean_steps` (unsigned mask of `Clean_step`, default `clean_step_all`)
+///   - `max_clean_iterations` (std::size_t, default 5; the paper runs 3 to 5)
+///   - `spike_angle` (double, degrees; default: that of `relax_spikes()`)
+///   - `min_component_faces` (std::size_t, default 400)
+///   - `max_hole_vertices` (std::size_t, default 100)
+///   - `boundary_dihedral_angle` (double, degrees, default 120)
+///   - `hole_density_factor` (double, default 1), `fair_hole_patches` (bool, default false)
+///   - `collect_garbage` (bool, default true)
+///   - `visitor`: one phase per step ("relax_spikes", ...), inside one phase
+///     per iteration ("iteration 1", ...); `stop_requested()` polled by every step
+/// \return `Scan_cleaning_result`: status `ok`, `partial` (small holes left
+///   open or a step left defects), `empty_input`, `invalid_mesh` (not a
+///   triangle mesh; untouched), `non_finite_input` (non-finite coordinates with
+///   the preprocessing step disabled; untouched), `invalid_parameter`,
+///   `cancelled` (the mesh is valid)
+template <typename PolygonMesh,
+          typename NamedParameters = CGAL::parameters::Default_named_parameters>
+Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
+                                     const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using GT = boost::graph_traits<PolygonMesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+  using Handle = internal::Visitor_handle<NamedParameters>;
+  namespace SC = internal::clean_pipeline;
+  namespace MP = mrepair::parameters;
+  using Clock = std::chrono::steady_clock;
+  const auto t_start = Clock::now();
+
+  Handle visitor(np);
+  auto vpm = CGAL::parameters::choose_parameter(
+      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+      get_property_map(CGAL::vertex_point, pmesh));
+  const unsigned mask = internal::get_or(np, internal_np::clean_steps, unsigned(clean_step_all));
+  const std::size_t max_it =
+      internal::get_or(np, internal_np::max_clean_iterations, std::size_t(5));
+  const double spike_angle = internal::get_or(np, internal_np::spike_angle,
+                                              std::numeric_limits<double>::quiet_NaN());
+  const std::size_t min_comp =
+      internal::get_or(np, internal_np::min_component_faces, std::size_t(400));
+  const std::size_t max_hole =
+      internal::get_or(np, internal_np::max_hole_vertices, std::size_t(100));
+  const double boundary_angle = internal::get_or(np, internal_np::boundary_dihedral_angle, 120.);
+  const double density = internal::get_or(np, internal_np::hole_density_factor, 1.);
+  const bool fair = internal::get_or(np, internal_np::fair_hole_patches, false);
+  const bool gc = internal::get_or(np, internal_np::collect_garbage, true);
+
+  Scan_cleaning_result r;
+  for (std::size_t i = 0; i < number_of_clean_steps; ++i)
+    r.steps[i].enabled = (mask >> i) & 1u;
+  r.vertices_before = static_cast<std::size_t>(vertices(pmesh).size());
+  r.faces_before = static_cast<std::size_t>(faces(pmesh).size());
+  auto finish = [&](Status s, const std::string& msg = std::string()) {
+    r.status = s;
+    r.message = msg;
+    r.vertices_after = static_cast<std::size_t>(vertices(pmesh).size());
+    r.faces_after = static_cast<std::size_t>(faces(pmesh).size());
+    r.seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
+    return r;
+  };
+
+  if ((!std::isnan(spike_angle) && !(spike_angle > 0. && spike_angle < 180.)) ||
+      min_comp == 0 || max_hole == 0 || !(density > 0.) || !std::isfinite(density) ||
+      !(boundary_angle >= 0. && boundary_angle <= 180.))
+    return finish(Status::invalid_parameter, "a parameter is out of range");
+  if (r.vertices_before == 0) return finish(Status::empty_input, "the mesh has no vertex");
+  if (!CGAL::is_triangle_mesh(pmesh))
+    return finish(Status::invalid_mesh, "clean_scan_mesh needs a triangle mesh");
+
+  SC::Forwarding_visitor<Handle> fwd(&visitor);
+  using Spikes = SC::Spike_steps<PolygonMesh, decltype(vpm)>;
+  Spikes spikes(pmesh, vpm, spike_angle);
+  // The steps of this file keep the statistics of relax_spikes.h current
+  // through local updates, so they are computed once per call.
+  typename Spikes::Observer stats_observer{&spikes};
+  auto fwd_np = CGAL::parameters::vertex_point_map(vpm).visitor(std::ref(fwd));
+  auto obs_np = MP::clean_edit_observer(&stats_observer, fwd_np);
+
+  // Runs step `i` with `body` (returning the number of changes) in a phase.
+  auto run_step = [&](std::size_t i, auto&& body) -> bool {
+    if (!r.steps[i].enabled) return true;
+    internal::Phase_scope<Handle> phase(visitor, clean_step_name(i));
+    const auto t0 = Clock::now();
+    SC::Step_outcome o = body();
+    Clean_step_stats& s = r.steps[i];
+    s.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    s.available = o.available;
+    if (!o.available) return true;
+    ++s.runs;
+    s.changes += o.changes;
+    s.last_status = o.status;
+    s.last_report = std::move(o.report);
+    return o.status != Status::cancelled;
+  };
+
+  // ---- Preprocessing: degenerate (non-finite, isolated) vertices ----------
+  {
+    std::vector<vertex_descriptor> bad;
+    for (vertex_descriptor v : vertices(pmesh))
+      if (!SC::is_finite_point(vpm, v)) bad.push_back(v);
+    if (!bad.empty() && !r.steps[0].enabled)
+      return finish(Status::non_finite_input,
+                    "non-finite coordinates and the remove_degenerate_vertices step is disabled");
+    bool ok = run_step(0, [&]() {
+      SC::Step_outcome o;
+      if (!bad.empty()) {
+        auto fmark = get(CGAL::dynamic_face_property_t<char>(), pmesh);
+        for (face_descriptor f : faces(pmesh)) put(fmark, f, char(0));
+        std::vector<face_descriptor> doomed;
+        for (vertex_descriptor v : bad)
+          if (halfedge(v, pmesh) != GT::null_halfedge())
+            for (auto h : CGAL::halfedges_around_target(halfedge(v, pmesh), pmesh))
+              if (!is_border(h, pmesh)) doomed.push_back(face(h, pmesh));
+        // Vertices left without faces are removed by Euler::remove_face; the
+        // isolated ones are among the isolated vertices below.
+        std::size_t extra = 0;
+        const std::size_t nv = static_cast<std::size_t>(vertices(pmesh).size());
+        r.faces_removed_with_non_finite =
+            SC::remove_faces_without_pinches(pmesh, doomed, fmark, extra);
+        r.non_finite_vertices_removed = nv - static_cast<std::size_t>(vertices(pmesh).size());
+      }
+      std::vector<vertex_descriptor> isolated;
+      for (vertex_descriptor v : vertices(pmesh))
+        if (halfedge(v, pmesh) == GT::null_halfedge()) isolated.push_back(v);
+      for (vertex_descriptor v : isolated) {
+        if (!SC::is_finite_point(vpm, v))
+          ++r.non_finite_vertices_removed;
+        else
+          ++r.isolated_vertices_removed;
+        remove_vertex(v, pmesh);
+      }
+      o.changes = r.faces_removed_with_non_finite + r.non_finite_vertices_removed +
+                  r.isolated_vertices_removed;
+      o.report.add("non_finite_vertices_removed", r.non_finite_vertices_removed);
+      o.report.add("isolated_vertices_removed", r.isolated_vertices_removed);
+      o.report.add("faces_removed_with_non_finite", r.faces_removed_with_non_finite);
+      return o;
+    });
+    if (!ok) return finish(Status::cancelled);
+  }
+
+  // ---- Iterations ---------------------------------------------------------
+  static const char* iteration_names[] = {"iteration 1", "iteration 2", "iteration 3",
+                                          "iteration 4", "iteration 5", "iteration 6",
+                                          "iteration 7", "iteration 8", "iteration 9"};
+  std::vector<std::size_t> previous;
+  bool partial = false;
+  for (std::size_t it = 0; it < max_it; ++it) {
+    if (faces(pmesh).size() == 0) break;
+    internal::Phase_scope<Handle> iteration_phase(
+        visitor, it < 9 ? iteration_names[it] : "iteration");
+    std::vector<std::size_t> before(number_of_clean_steps);
+    for (std::size_t i = 0; i < number_of_clean_steps; ++i) before[i] = r.steps[i].changes;
+
+    bool ok =
+        run_step(1, [&]() { return spikes.relax(fwd); }) &&
+        run_step(2, [&]() { return spikes.remove_unrelaxable(fwd); }) &&
+        run_step(3, [&]() {
+          Boundary_cleaning_result b = clean_boundaries(
+              pmesh, MP::boundary_dihedral_angle(boundary_angle, obs_np));
+          SC::add_totals(r.boundaries, b);
+          SC::Step_outcome o;
+          o.status = b.status;
+          o.changes = b.faces_removed + b.component_faces_removed;
+          b.to_report(o.report);
+          return o;
+        }) &&
+        run_step(4, [&]() {
+          Small_components_result c =
+              remove_small_components(pmesh, MP::min_component_faces(min_comp, obs_np));
+          SC::add_totals(r.components, c);
+          SC::Step_outcome o;
+          o.status = c.status;
+          o.changes = c.faces_removed;
+          c.to_report(o.report);
+          return o;
+        }) &&
+        run_step(5, [&]() {
+          Hole_filling_result h = fill_small_holes(
+              pmesh, MP::max_hole_vertices(
+                         max_hole, MP::hole_density_factor(
+                                       density, MP::fair_hole_patches(fair, obs_np))));
+          SC::add_totals(r.holes, h);
+          SC::Step_outcome o;
+          o.status = h.status;
+          o.changes = h.holes_filled + h.enlargement_faces_removed;
+          h.to_report(o.report);
+          return o;
+        }) &&
+        run_step(6, [&]() { return spikes.fix_near_degenerate(fwd); }) &&
+        run_step(7, [&]() { return spikes.relax(fwd); });
+    ++r.iterations;
+    if (!ok) {
+      spikes.invalidate();
+      if (gc) SC::collect_garbage_of(pmesh);
+      return finish(Status::cancelled);
+    }
+    std::vector<std::size_t> delta(number_of_clean_steps);
+    std::size_t total = 0;
+    for (std::size_t i = 0; i < number_of_clean_steps; ++i) {
+      delta[i] = r.steps[i].changes - before[i];
+      if (i > 0) total += delta[i];
+    }
+    if (total == 0 || delta == previous) {
+      r.converged = total == 0;
+      break;
+    }
+    previous = delta;
+  }
+  spikes.invalidate();  // drop its property maps before the garbage collection
+  // relax_spikes (step 1) is expected to leave unrelaxable spikes to step 2
+  for (std::size_t i = 2; i < number_of_clean_steps; ++i)
+    if (r.steps[i].runs && r.steps[i].last_status == Status::partial) partial = true;
+  if (gc) SC::collect_garbage_of(pmesh);
+  return finish(partial ? Status::partial : Status::ok);
+}
+
+}  // namespace mrepair
+
+#endif  // MREPAIR_CLEAN_SCAN_MESH_H

@@ -1,0 +1,504 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_FILL_SMALL_HOLES_H
+#define MREPAIR_FILL_SMALL_HOLES_H
+
+#include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+#include <mrepair/parameters.h>
+#include <mrepair/report.h>
+#include <mrepair/status.h>
+#include <mrepair/visitors.h>
+
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/boost/graph/properties.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/Polygon_mesh_processing/fair.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <iterator>
+#include <set>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+/// \file fill_small_holes.h
+/// RameshCleaner 3.4 and 3.5: small boundary loops are triangulated with
+/// Liepa's minimum-weight method (dihedral angle, then area), the patch is
+/// refined to the density of the surrounding edges, and holes whose fill
+/// would create a complex edge are enlarged by removing their boundary's
+/// 1-ring and filled again.
+
+MREPAIR_ADD_NAMED_PARAMETER(hole_density_factor)    // patch edge length / hole boundary mean (1)
+MREPAIR_ADD_NAMED_PARAMETER(fair_hole_patches)      // bool, fair patches after refinement (false)
+MREPAIR_ADD_NAMED_PARAMETER(refine_hole_patches)    // bool, refine patches (true)
+MREPAIR_ADD_NAMED_PARAMETER(max_hole_enlargements)  // enlargements of an aborted fill (3)
+MREPAIR_ADD_NAMED_PARAMETER(hole_delaunay_above)    // loops with more vertices use the DT3 search space (30)
+
+namespace mrepair {
+
+/// \ingroup mrepair_clean
+/// a small hole left open by `fill_small_holes()`.
+struct Open_hole
+{
+  std::size_t vertices = 0;  ///< boundary loop size when it was given up
+  std::string reason;        ///< "triangulation_failed", "grew_too_large", "non_finite"
+};
+
+/// \ingroup mrepair_clean
+/// what `fill_small_holes()` did.
+struct Hole_filling_result
+{
+  Status status = Status::ok;
+  std::size_t holes_found = 0;      ///< boundary loops with fewer than max_hole_vertices vertices
+  std::size_t holes_too_large = 0;  ///< loops at or above the limit, left open on purpose
+  std::size_t holes_filled = 0;     ///< holes closed (after enlargement or not)
+  std::size_t aborted_fills = 0;    ///< triangulations that failed (complex edge, degenerate loop)
+  std::size_t enlargements = 0;     ///< 1-ring enlargements of aborted holes
+  std::size_t enlargement_faces_removed = 0;
+  std::size_t faces_added = 0;      ///< net faces of the patches (after refinement)
+  std::size_t vertices_added = 0;   ///< patch interior vertices
+  std::vector<Open_hole> open_holes;  ///< small holes left open, with the reason
+
+  void to_report(Report& r) const
+  {
+    r.add("status", status);
+    r.add("holes_found", holes_found);
+    r.add("holes_filled", holes_filled);
+    r.add("holes_too_large", holes_too_large);
+    r.add("aborted_fills", aborted_fills);
+    r.add("enlargements", enlargements);
+    r.add("enlargement_faces_removed", enlargement_faces_removed);
+    r.add("faces_added", faces_added);
+    r.add("vertices_added", vertices_added);
+    r.add("holes_left_open", open_holes.size());
+    std::size_t failed = 0, grew = 0, nonfinite = 0;
+    for (const Open_hole& h : open_holes) {
+      if (h.reason == "triangulation_failed") ++failed;
+      else if (h.reason == "grew_too_large") ++grew;
+      else ++nonfinite;
+    }
+    if (!open_holes.empty()) {
+      Report& s = r.section("left_open");
+      s.add("triangulation_failed", failed);
+      s.add("grew_too_large", grew);
+      s.add("non_finite", nonfinite);
+    }
+  }
+};
+
+namespace internal {
+namespace clean_pipeline {
+
+/// Fills holes (3.4) and handles aborted fills (3.5) for one mesh.
+template <typename PM, typename VPM, typename Observer = No_edit_observer>
+class Small_hole_filler
+{
+  using GT = boost::graph_traits<PM>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+
+  PM& pm_;
+  VPM vpm_;
+  std::size_t max_vertices_;
+  double density_;
+  bool refine_, fair_;
+  std::size_t delaunay_above_;
+  Observer* observer_;
+
+public:
+  Hole_filling_result result;
+
+  Small_hole_filler(PM& pm, VPM vpm, std::size_t max_vertices, double density, bool refine,
+                    bool fair, std::size_t delaunay_above, Observer* observer)
+    : pm_(pm), vpm_(vpm), max_vertices_(max_vertices), density_(density), refine_(refine),
+      fair_(fair), delaunay_above_(delaunay_above), observer_(observer)
+  {}
+
+  std::size_t loop_size(halfedge_descriptor h) const
+  {
+    std::size_t n = 0;
+    for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_)) { (void)g; ++n; }
+    return n;
+  }
+
+  // One representative border halfedge per border loop among `hs`
+  // (deduplicated by walking each loop once).
+  void loops_of(const std::vector<halfedge_descriptor>& hs, std::vector<halfedge_descriptor>& out)
+  {
+    std::set<halfedge_descriptor> done;
+    for (halfedge_descriptor h : hs) {
+      if (!is_border(h, pm_) || done.count(h)) continue;
+      out.push_back(h);
+      for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_)) done.insert(g);
+    }
+  }
+
+  // Triangulates the loop of `h`, then refines and fairs the patch. Returns
+  // false (mesh unchanged) when no valid triangulation exists.
+  bool fill(halfedge_descriptor h, std::size_t n)
+  {
+    double lsum = 0.;
+    for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_)) {
+      if (!is_finite_point(vpm_, target(g, pm_))) return false;
+      lsum += norm(sub(point(vpm_, target(g, pm_)), point(vpm_, source(g, pm_))));
+    }
+    std::vector<vertex_descriptor> loop;
+    for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_)) loop.push_back(target(g, pm_));
+    std::vector<face_descriptor> patch;
+    patch.reserve(2 * n);
+    observer_->before(loop);
+    // CGAL's implementation of Liepa's weight; existing edges between loop
+    // vertices and degenerate triangles are excluded, so an empty output is
+    // an aborted fill (3.5). The DT3 search space only pays on longer loops.
+    CGAL::Polygon_mesh_processing::triangulate_hole(
+        pm_, h, std::back_inserter(patch),
+        CGAL::parameters::vertex_point_map(vpm_).use_delaunay_triangulation(n > delaunay_above_));
+    if (patch.empty()) {
+      observer_->after(loop);
+      return false;
+    }
+    std::vector<vertex_descriptor> added;
+    if (refine_ && n > 3) refine(patch, density_ * lsum / double(n), added, loop);
+    if (fair_ && !added.empty())
+      CGAL::Polygon_mesh_processing::fair(pm_, added, CGAL::parameters::vertex_point_map(vpm_));
+    result.faces_added += patch.size();
+    result.vertices_added += added.size();
+    loop.insert(loop.end(), added.begin(), added.end());
+    observer_->after(loop);
+    return true;
+  }
+
+  // Refines a patch to edge length `L` (Botsch-Kobbelt style, patch only):
+  // split interior edges longer than 4/3 L, flip towards valence 6, relax new
+  // vertices with the uniform Laplacian. The loop's edges and vertices stay.
+  void refine(std::vector<face_descriptor>& patch, double L,
+              std::vector<vertex_descriptor>& added, std::vector<vertex_descriptor>& loop)
+  {
+    if (!(L > 0.)) return;
+    std::set<face_descriptor> in(patch.begin(), patch.end());
+    auto interior = [&](halfedge_descriptor h) {
+      return !is_border_edge(h, pm_) && in.count(face(h, pm_)) &&
+             in.count(face(opposite(h, pm_), pm_));
+    };
+    auto sqlen = [&](halfedge_descriptor h) {
+      Vec3 d = sub(point(vpm_, target(h, pm_)), point(vpm_, source(h, pm_)));
+      return dot(d, d);
+    };
+    const double high2 = (4. / 3. * L) * (4. / 3. * L);
+    const double low2 = (4. / 5. * L) * (4. / 5. * L);
+    std::set<vertex_descriptor> added_set;
+    std::vector<halfedge_descriptor> hs;
+    // Flip and relax first, split last: the loop ends on a split pass that
+    // found nothing, so every patch edge is at most 4/3 L on exit.
+    for (int round = 0; round < 12; ++round) {
+      // Flip interior edges towards valence 6 when it does not fold the patch.
+      for (int pass = 0; pass < 2; ++pass) {
+        hs.clear();
+        for (face_descriptor f : patch)
+          for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, pm_), pm_))
+            if (interior(h) && h < opposite(h, pm_)) hs.push_back(h);
+        for (halfedge_descriptor h : hs) try_flip(h);
+      }
+      // Relax the new vertices (uniform Laplacian, Jacobi).
+      for (int it = 0; it < 3; ++it) {
+        std::vector<Vec3> np(added.size());
+        for (std::size_t i = 0; i < added.size(); ++i) {
+          Vec3 c{0, 0, 0};
+          int k = 0;
+          for (vertex_descriptor w : CGAL::vertices_around_target(halfedge(added[i], pm_), pm_)) {
+            c = add(c, point(vpm_, w));
+            ++k;
+          }
+          np[i] = k ? mul(c, 1. / k) : point(vpm_, added[i]);
+        }
+        for (std::size_t i = 0; i < added.size(); ++i) set_point(vpm_, added[i], np[i]);
+      }
+      // Split, longest first.
+      hs.clear();
+      for (face_descriptor f : patch)
+        for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, pm_), pm_))
+          if (interior(h) && h < opposite(h, pm_) && sqlen(h) > high2) hs.push_back(h);
+      std::sort(hs.begin(), hs.end(), [&](halfedge_descriptor a, halfedge_descriptor b) {
+        return sqlen(a) > sqlen(b);
+      });
+      std::size_t splits = 0;
+      for (halfedge_descriptor h : hs) {
+        if (sqlen(h) <= high2) continue;
+        Vec3 m = mul(add(point(vpm_, source(h, pm_)), point(vpm_, target(h, pm_))), 0.5);
+        halfedge_descriptor hn = CGAL::Euler::split_edge(h, pm_);  // hn -> new vertex, next(hn) == h
+        vertex_descriptor vn = target(hn, pm_);
+        set_point(vpm_, vn, m);
+        added.push_back(vn);
+        added_set.insert(vn);
+        // Both sides are triangles of the patch, now quads: cut each from
+        // the new vertex to its opposite corner (either side of the new
+        // edge may be the new face, so record both).
+        halfedge_descriptor oh = opposite(h, pm_);
+        halfedge_descriptor ohn = opposite(hn, pm_);
+        halfedge_descriptor a = CGAL::Euler::split_face(hn, next(h, pm_), pm_);
+        for (face_descriptor f : {face(a, pm_), face(opposite(a, pm_), pm_)})
+          if (in.insert(f).second) patch.push_back(f);
+        halfedge_descriptor b = CGAL::Euler::split_face(oh, next(ohn, pm_), pm_);
+        for (face_descriptor f : {face(b, pm_), face(opposite(b, pm_), pm_)})
+          if (in.insert(f).second) patch.push_back(f);
+        ++splits;
+      }
+      // Collapse short edges at new vertices (the splits of fan-shaped
+      // initial triangulations crowd vertices). One at a time, then rescan:
+      // a collapse removes halfedges a stored list could still hold.
+      std::size_t collapses = 0;
+      while (collapses < 4 * patch.size()) {
+        halfedge_descriptor best = GT::null_halfedge();
+        double best_len = low2;
+        for (face_descriptor f : patch)
+          for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, pm_), pm_))
+            if (interior(h) && sqlen(h) < best_len &&
+                (added_set.count(source(h, pm_)) || added_set.count(target(h, pm_))) &&
+                can_collapse(h, L, added_set)) {
+              best = h;
+              best_len = sqlen(h);
+            }
+        if (best == GT::null_halfedge()) break;
+        collapse(best, added_set, in, loop);
+        patch.assign(in.begin(), in.end());
+        ++collapses;
+      }
+      added.assign(added_set.begin(), added_set.end());
+      if (splits == 0 && collapses == 0) break;
+    }
+  }
+
+  // Position of the vertex kept when `h`'s edge collapses: an original
+  // vertex stays where it is, two new vertices meet at the midpoint.
+  Vec3 collapse_point(halfedge_descriptor h, const std::set<vertex_descriptor>& added_set) const
+  {
+    vertex_descriptor a = source(h, pm_), b = target(h, pm_);
+    if (!added_set.count(a)) return point(vpm_, a);
+    if (!added_set.count(b)) return point(vpm_, b);
+    return mul(add(point(vpm_, a), point(vpm_, b)), 0.5);
+  }
+
+  // Link condition, no edge longer than 4/3 L, no face turned over.
+  bool can_collapse(halfedge_descriptor h, double L, const std::set<vertex_descriptor>& added_set)
+  {
+    if (!CGAL::Euler::does_satisfy_link_condition(edge(h, pm_), pm_)) return false;
+    const Vec3 p = collapse_point(h, added_set);
+    const double high2 = (4. / 3. * L) * (4. / 3. * L);
+    vertex_descriptor a = source(h, pm_), b = target(h, pm_);
+    for (vertex_descriptor v : {a, b})
+      for (halfedge_descriptor k : CGAL::halfedges_around_target(v, pm_)) {
+        vertex_descriptor w = source(k, pm_);
+        if (w == a || w == b) continue;
+        Vec3 d = sub(point(vpm_, w), p);
+        if (dot(d, d) > high2) return false;
+        if (is_border(k, pm_)) continue;
+        // Face of k: (.., w, v): skip the two faces that vanish.
+        face_descriptor f = face(k, pm_);
+        if (f == face(h, pm_) || f == face(opposite(h, pm_), pm_)) continue;
+        Vec3 q[3];
+        int i = 0;
+        Vec3 before = face_normal(k, pm_, vpm_);
+        for (vertex_descriptor u : CGAL::vertices_around_face(k, pm_))
+          q[i++] = (u == a || u == b) ? p : point(vpm_, u);
+        Vec3 after = cross(sub(q[1], q[0]), sub(q[2], q[0]));
+        if (dot(before, after) <= 0.) return false;
+      }
+    return true;
+  }
+
+  // `loop` lists the loop's vertices: when the collapse keeps the new vertex
+  // (CGAL keeps target(halfedge(e))), it takes the original's place there.
+  void collapse(halfedge_descriptor h, std::set<vertex_descriptor>& added_set,
+                std::set<face_descriptor>& in, std::vector<vertex_descriptor>& loop)
+  {
+    const Vec3 p = collapse_point(h, added_set);
+    const vertex_descriptor a = source(h, pm_), b = target(h, pm_);
+    const bool keep_original = !added_set.count(a) || !added_set.count(b);
+    const vertex_descriptor original = added_set.count(a) ? b : a;
+    in.erase(face(h, pm_));
+    in.erase(face(opposite(h, pm_), pm_));
+    added_set.erase(source(h, pm_));
+    added_set.erase(target(h, pm_));
+    vertex_descriptor v = CGAL::Euler::collapse_edge(edge(h, pm_), pm_);
+    set_point(vpm_, v, p);
+    if (!keep_original)
+      added_set.insert(v);  // two new vertices merged: still new
+    else if (v != original)
+      std::replace(loop.begin(), loop.end(), original, v);
+  }
+
+  bool try_flip(halfedge_descriptor h)
+  {
+    halfedge_descriptor o = opposite(h, pm_);
+    vertex_descriptor a = target(h, pm_), b = target(o, pm_);
+    vertex_descriptor c = target(next(h, pm_), pm_), d = target(next(o, pm_), pm_);
+    if (c == d || halfedge(c, d, pm_).second) return false;
+    auto val = [&](vertex_descriptor v) { return int(degree(v, pm_)); };
+    const int va = val(a), vb = val(b), vc = val(c), vd = val(d);
+    if (va <= 3 || vb <= 3) return false;
+    auto dev = [](int x) { return std::abs(x - 6); };
+    int before = dev(va) + dev(vb) + dev(vc) + dev(vd);
+    int after = dev(va - 1) + dev(vb - 1) + dev(vc + 1) + dev(vd + 1);
+    if (after >= before) return false;
+    // Geometry: both new triangles keep the orientation of the old pair.
+    Vec3 pa = point(vpm_, a), pb = point(vpm_, b), pc = point(vpm_, c), pd = point(vpm_, d);
+    Vec3 n_old = add(cross(sub(pa, pb), sub(pc, pb)), cross(sub(pb, pa), sub(pd, pa)));
+    // h: b->a in face (b, a, c); o: a->b in face (a, b, d); the quad is
+    // a-c-b-d and the flip makes (b, d, c) and (a, c, d).
+    Vec3 n1 = cross(sub(pd, pb), sub(pc, pb)), n2 = cross(sub(pc, pa), sub(pd, pa));
+    if (dot(n1, n_old) <= 0. || dot(n2, n_old) <= 0.) return false;
+    // No needle: each new triangle keeps a fair share of the pair's area.
+    if (norm(n1) <= 1e-2 * norm(n_old) || norm(n2) <= 1e-2 * norm(n_old)) return false;
+    CGAL::Euler::flip_edge(h, pm_);
+    return true;
+  }
+
+  // Removes the faces around the loops of `holes` (their boundary's 1-ring),
+  // resolving pinches; returns the border halfedges around the survivors.
+  void enlarge(const std::vector<halfedge_descriptor>& holes,
+               std::vector<halfedge_descriptor>& new_border)
+  {
+    auto fmark = get(CGAL::dynamic_face_property_t<char>(), pm_);
+    std::vector<face_descriptor> doomed;
+    for (halfedge_descriptor h : holes)
+      for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_))
+        for (halfedge_descriptor k : CGAL::halfedges_around_target(target(g, pm_), pm_))
+          if (!is_border(k, pm_)) doomed.push_back(face(k, pm_));
+    for (face_descriptor f : faces(pm_)) put(fmark, f, char(0));  // rare: aborted fills only
+    std::vector<vertex_descriptor> survivors;
+    std::size_t extra = 0;
+    std::size_t removed =
+        remove_faces_without_pinches(pm_, doomed, fmark, extra, &survivors, observer_);
+    result.enlargement_faces_removed += removed;
+    ++result.enlargements;
+    std::vector<halfedge_descriptor> hs;
+    for (vertex_descriptor v : survivors)
+      for (halfedge_descriptor k : CGAL::halfedges_around_target(v, pm_))
+        if (is_border(k, pm_)) hs.push_back(k);
+    loops_of(hs, new_border);
+  }
+
+  template <typename Visitor>
+  Status run(std::size_t max_enlargements, Visitor& visitor)
+  {
+    std::vector<halfedge_descriptor> all, loops;
+    for (halfedge_descriptor h : halfedges(pm_))
+      if (is_border(h, pm_)) all.push_back(h);
+    loops_of(all, loops);
+    std::vector<halfedge_descriptor> failed, next;
+    std::size_t done = 0;
+    for (halfedge_descriptor h : loops) {
+      if (visitor.stop_requested()) return Status::cancelled;
+      std::size_t n = loop_size(h);
+      if (n >= max_vertices_) { ++result.holes_too_large; continue; }
+      ++result.holes_found;
+      if (fill(h, n)) ++result.holes_filled;
+      else { ++result.aborted_fills; failed.push_back(h); }
+      if ((++done & 63) == 0) visitor.progress(double(done) / double(loops.size()));
+    }
+    // 3.5: enlarge the aborted holes by their 1-ring and retry, a bounded
+    // number of times. Enlarging all of them at once keeps every stored
+    // halfedge valid (a loop's halfedges are only touched by its own round).
+    for (std::size_t round = 0; !failed.empty(); ++round) {
+      if (round == max_enlargements) {
+        for (halfedge_descriptor h : failed)
+          result.open_holes.push_back({loop_size(h), "triangulation_failed"});
+        break;
+      }
+      if (visitor.stop_requested()) return Status::cancelled;
+      loops.clear();
+      enlarge(failed, loops);
+      failed.clear();
+      for (halfedge_descriptor h : loops) {
+        std::size_t n = loop_size(h);
+        if (n >= max_vertices_) {
+          result.open_holes.push_back({n, "grew_too_large"});
+          continue;
+        }
+        if (fill(h, n)) ++result.holes_filled;
+        else { ++result.aborted_fills; failed.push_back(h); }
+      }
+    }
+    return result.open_holes.empty() ? Status::ok : Status::partial;
+  }
+};
+
+}  // namespace clean_pipeline
+}  // namespace internal
+
+/// \ingroup mrepair_clean
+/// fills the holes of `pmesh` whose boundary loop has fewer than
+/// `max_hole_vertices` vertices (RameshCleaner 3.4, 3.5).
+///
+/// \code
+/// for each border loop with n < max_hole_vertices vertices:
+///   triangulate it with Liepa's minimum-weight method (min. max. dihedral
+///     angle, then area; existing edges and degenerate triangles excluded)
+///   if no valid triangulation exists (the fill would create a complex edge):
+///     mark it aborted
+///   else refine the patch to the density of the loop's edges x hole_density_factor
+///     (split > 4/3 L, flip to valence 6, relax), fair it if asked
+/// repeat at most max_hole_enlargements times while some fills aborted:
+///   remove the 1-ring faces of the aborted loops (no pinched vertex left)
+///   fill the loops this makes if they are still small, else leave them open
+/// \endcode
+/// Holes at or above the limit are never filled: the paper only polishes
+/// large holes (`clean_boundaries()`) and leaves completion to other tools.
+///
+/// \tparam PolygonMesh model of `MutableFaceGraph` (triangle mesh)
+/// \param np optional:
+///   - `vertex_point_map` (default: internal point map)
+///   - `max_hole_vertices` (std::size_t, default 100, the paper's tables)
+///   - `hole_density_factor` (double, default 1): patch edge length over the
+///     mean edge length of the loop; above 1 coarser, below 1 denser
+///   - `refine_hole_patches` (bool, default true)
+///   - `fair_hole_patches` (bool, default false): `CGAL::PMP::fair` on the patch interior
+///   - `max_hole_enlargements` (std::size_t, default 3)
+///   - `hole_delaunay_above` (std::size_t, default 30): loops with more vertices
+///     restrict Liepa's search to the edges of a 3D Delaunay triangulation
+///   - `visitor`: phase "fill_small_holes"; `stop_requested()` polled between holes
+/// \return `Hole_filling_result`; status `ok`, `partial` (small holes left
+///   open, listed with their reason), `invalid_parameter` or `cancelled`
+template <typename PolygonMesh,
+          typename NamedParameters = CGAL::parameters::Default_named_parameters>
+Hole_filling_result fill_small_holes(PolygonMesh& pmesh,
+                                     const NamedParameters& np = CGAL::parameters::default_values())
+{
+  internal::Visitor_handle<NamedParameters> visitor(np);
+  internal::Phase_scope<internal::Visitor_handle<NamedParameters>> phase(visitor,
+                                                                         "fill_small_holes");
+  auto vpm = CGAL::parameters::choose_parameter(
+      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+      get_property_map(CGAL::vertex_point, pmesh));
+  const std::size_t max_vertices =
+      internal::get_or(np, internal_np::max_hole_vertices, std::size_t(100));
+  const double density = internal::get_or(np, internal_np::hole_density_factor, 1.);
+  const bool refine = internal::get_or(np, internal_np::refine_hole_patches, true);
+  const bool fair = internal::get_or(np, internal_np::fair_hole_patches, false);
+  const std::size_t enlargements =
+      internal::get_or(np, internal_np::max_hole_enlargements, std::size_t(3));
+  const std::size_t dt_above =
+      internal::get_or(np, internal_np::hole_delaunay_above, std::size_t(30));
+  if (!(density > 0.) || !std::isfinite(density)) {
+    Hole_filling_result r;
+    r.status = Status::invalid_parameter;
+    return r;
+  }
+  auto observer = internal::clean_pipeline::edit_observer(np);
+  internal::clean_pipeline::Small_hole_filler<PolygonMesh, decltype(vpm),
+                                              std::remove_pointer_t<decltype(observer)>>
+      filler(pmesh, vpm, max_vertices, density, refine, fair, dt_above, observer);
+  Status s = filler.run(enlargements, visitor);
+  filler.result.status = s;
+  visitor.progress(1.);
+  return filler.result;
+}
+
+}  // namespace mrepair
+
+#endif  // MREPAIR_FILL_SMALL_HOLES_H

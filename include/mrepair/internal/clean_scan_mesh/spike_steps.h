@@ -1,0 +1,127 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Adaptor from the pipeline (clean_scan_mesh.h) to the scan-cleaning-I steps
+// (relax_spikes.h, repair_near_degenerate_faces.h): each call returns a
+// uniform outcome (status, number of changes, report). The geometric
+// statistics are shared by consecutive scan-cleaning-I steps and dropped
+// (`invalidate`) before a step that edits the mesh without updating them.
+#ifndef MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SPIKE_STEPS_H
+#define MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SPIKE_STEPS_H
+
+#include <mrepair/geometric_statistics.h>
+#include <mrepair/parameters.h>
+#include <mrepair/relax_spikes.h>
+#include <mrepair/repair_near_degenerate_faces.h>
+#include <mrepair/report.h>
+#include <mrepair/status.h>
+
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <memory>
+
+namespace mrepair {
+namespace internal {
+namespace clean_pipeline {
+
+struct Step_outcome
+{
+  bool available = true;
+  Status status = Status::ok;
+  std::size_t changes = 0;  // elements changed (moved, removed, collapsed)
+  Report report;
+};
+
+template <typename PM, typename VPM>
+class Spike_steps
+{
+  using Stats = Geometric_statistics<PM, VPM>;
+  PM& pm_;
+  VPM vpm_;
+  double spike_angle_;  // NaN: the default of relax_spikes.h
+  std::unique_ptr<Stats> stats_;
+
+  Stats& stats()
+  {
+    if (!stats_) {
+      stats_.reset(new Stats(pm_, vpm_));
+      stats_->compute_all();
+    }
+    return *stats_;
+  }
+
+  // Calls `f(np)` with a pack carrying the visitor and, when set, the spike angle.
+  template <typename Visitor, typename F>
+  auto with_np(Visitor& vis, F&& f)
+  {
+    auto np = CGAL::parameters::visitor(std::ref(vis));
+    if (std::isnan(spike_angle_)) return f(np);
+    return f(mrepair::parameters::spike_angle(spike_angle_, np));
+  }
+
+public:
+  /// keeps the statistics (when they exist) current through the edits of
+  /// the other steps: `before`/`after` of `Geometric_statistics`' local update.
+  struct Observer
+  {
+    Spike_steps* steps;
+    template <typename R>
+    void before(const R& r)
+    {
+      if (steps->stats_) steps->stats_->before_local_edit(r);
+    }
+    template <typename R>
+    void after(const R& r)
+    {
+      if (steps->stats_) steps->stats_->after_local_edit(r);
+    }
+  };
+
+  Spike_steps(PM& pm, VPM vpm, double spike_angle)
+    : pm_(pm), vpm_(vpm), spike_angle_(spike_angle)
+  {}
+
+  /// the mesh is about to change without the statistics being updated.
+  void invalidate() { stats_.reset(); }
+
+  template <typename Visitor>
+  Step_outcome relax(Visitor& vis)
+  {
+    Step_outcome o;
+    Spike_relaxation_result r =
+        with_np(vis, [&](const auto& np) { return relax_spikes(pm_, stats(), np); });
+    o.status = r.status;
+    o.changes = r.vertices_relaxed;
+    r.to_report(o.report);
+    return o;
+  }
+
+  template <typename Visitor>
+  Step_outcome remove_unrelaxable(Visitor& vis)
+  {
+    Step_outcome o;
+    Spike_removal_result r =
+        with_np(vis, [&](const auto& np) { return remove_unrelaxable_spikes(pm_, stats(), np); });
+    o.status = r.status;
+    o.changes = r.faces_removed + r.dangling_faces_removed;
+    r.to_report(o.report);
+    return o;
+  }
+
+  template <typename Visitor>
+  Step_outcome fix_near_degenerate(Visitor& vis)
+  {
+    Step_outcome o;
+    Near_degenerate_faces_result r = repair_near_degenerate_faces(
+        pm_, stats(), CGAL::parameters::visitor(std::ref(vis)));
+    o.status = r.status;
+    o.changes = r.edges_collapsed + r.edges_flipped;
+    r.to_report(o.report);
+    return o;
+  }
+};
+
+}  // namespace clean_pipeline
+}  // namespace internal
+}  // namespace mrepair
+
+#endif  // MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SPIKE_STEPS_H

@@ -1,0 +1,197 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_REMOVE_SMALL_COMPONENTS_H
+#define MREPAIR_REMOVE_SMALL_COMPONENTS_H
+
+#include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+#include <mrepair/parameters.h>
+#include <mrepair/report.h>
+#include <mrepair/status.h>
+#include <mrepair/visitors.h>
+
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/properties.h>
+#include <CGAL/Named_function_parameters.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+/// \file remove_small_components.h
+/// RameshCleaner 3.2: removal of small face-connected components by a
+/// region growing that stops as soon as a component reaches the threshold, so
+/// that large components cost little.
+
+namespace mrepair {
+
+/// \ingroup mrepair_clean
+/// what `remove_small_components()` did.
+struct Small_components_result
+{
+  Status status = Status::ok;
+  std::size_t components_removed = 0;
+  std::size_t faces_removed = 0;
+  std::size_t vertices_removed = 0;
+  /// every component was small; the largest one was kept so as not to empty the mesh
+  bool kept_largest = false;
+
+  void to_report(Report& r) const
+  {
+    r.add("status", status);
+    r.add("components_removed", components_removed);
+    r.add("faces_removed", faces_removed);
+    r.add("vertices_removed", vertices_removed);
+    if (kept_largest) r.add("kept_largest_small_component", true);
+  }
+};
+
+namespace internal {
+namespace clean_pipeline {
+
+/// Finds the face-connected components with fewer than `threshold` faces
+/// among those that contain a face of `seeds`. Each component is grown by a
+/// queue from a seed; growth stops as soon as it reaches `threshold` faces or
+/// touches a face already known to lie in a large component, and then all the
+/// faces it collected are labelled large, so every face is enqueued at most
+/// once over the whole call (linear time whatever the threshold).
+///
+/// `small` receives the faces of the small components, `offsets` the start of
+/// each component in `small` (plus a final end offset).
+template <typename PM, typename FaceRange>
+void find_small_components(const PM& pm, const FaceRange& seeds, std::size_t threshold,
+                           std::vector<typename boost::graph_traits<PM>::face_descriptor>& small,
+                           std::vector<std::size_t>& offsets)
+{
+  using GT = boost::graph_traits<PM>;
+  using face_descriptor = typename GT::face_descriptor;
+  small.clear();
+  offsets.assign(1, 0);
+  if (threshold <= 1) return;  // no component has fewer than 1 face
+  // 0 unvisited, 1 growing, 2 in a large component, 3 in a small one
+  auto label = get(CGAL::dynamic_face_property_t<char>(), pm);
+  for (face_descriptor f : faces(pm)) put(label, f, char(0));
+  std::vector<face_descriptor> comp;
+  for (face_descriptor seed : seeds) {
+    if (get(label, seed) != 0) continue;
+    comp.clear();
+    comp.push_back(seed);
+    put(label, seed, char(1));
+    bool large = comp.size() >= threshold;
+    for (std::size_t head = 0; head < comp.size() && !large; ++head) {
+      for (auto h : CGAL::halfedges_around_face(halfedge(comp[head], pm), pm)) {
+        auto o = opposite(h, pm);
+        if (is_border(o, pm)) continue;
+        face_descriptor n = face(o, pm);
+        char l = get(label, n);
+        if (l == 2) { large = true; break; }
+        if (l == 0) {
+          put(label, n, char(1));
+          comp.push_back(n);
+          if (comp.size() >= threshold) { large = true; break; }
+        }
+      }
+    }
+    const char final_label = large ? char(2) : char(3);
+    for (face_descriptor f : comp) put(label, f, final_label);
+    if (!large) {
+      small.insert(small.end(), comp.begin(), comp.end());
+      offsets.push_back(small.size());
+    }
+  }
+}
+
+/// Removes the small components that contain a face of `seeds` (see
+/// `find_small_components()`); never empties a non-empty mesh: when every
+/// component is small, the largest is kept.
+template <typename PM, typename FaceRange, typename Observer = No_edit_observer>
+Small_components_result remove_small_components_seeded(PM& pm, const FaceRange& seeds,
+                                                       std::size_t threshold,
+                                                       Observer* observer = nullptr)
+{
+  using face_descriptor = typename boost::graph_traits<PM>::face_descriptor;
+  Small_components_result r;
+  std::vector<face_descriptor> small;
+  std::vector<std::size_t> offsets;
+  find_small_components(pm, seeds, threshold, small, offsets);
+  const std::size_t n_comp = offsets.size() - 1;
+  if (n_comp == 0) return r;
+  std::size_t keep = n_comp;  // component index spared, n_comp = none
+  if (small.size() == static_cast<std::size_t>(faces(pm).size())) {
+    keep = 0;
+    for (std::size_t c = 1; c < n_comp; ++c)
+      if (offsets[c + 1] - offsets[c] > offsets[keep + 1] - offsets[keep]) keep = c;
+    r.kept_largest = true;
+  }
+  const std::size_t nv = static_cast<std::size_t>(vertices(pm).size());
+  for (std::size_t c = 0; c < n_comp; ++c) {
+    if (c == keep) continue;
+    // Components are vertex-disjoint in a valid mesh: removing one whole never
+    // pinches another.
+    if (observer) {
+      std::vector<typename boost::graph_traits<PM>::vertex_descriptor> vs;
+      for (std::size_t i = offsets[c]; i < offsets[c + 1]; ++i)
+        for (auto v : CGAL::vertices_around_face(halfedge(small[i], pm), pm)) vs.push_back(v);
+      std::sort(vs.begin(), vs.end());
+      vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+      observer->before(vs);  // nothing survives: no `after`
+    }
+    for (std::size_t i = offsets[c]; i < offsets[c + 1]; ++i)
+      CGAL::Euler::remove_face(halfedge(small[i], pm), pm);
+    ++r.components_removed;
+    r.faces_removed += offsets[c + 1] - offsets[c];
+  }
+  r.vertices_removed = nv - static_cast<std::size_t>(vertices(pm).size());
+  return r;
+}
+
+}  // namespace clean_pipeline
+}  // namespace internal
+
+/// \ingroup mrepair_clean
+/// removes the face-connected components of `pmesh` with fewer than
+/// `min_component_faces` faces (RameshCleaner 3.2).
+///
+/// Components are found by queue-based region growing that stops as soon as a
+/// component reaches the threshold (or meets a face known to be in a large
+/// component), so the cost is linear in the mesh size whatever the threshold.
+/// When every component is small, the largest one is kept so that a non-empty
+/// mesh is never emptied (`kept_largest` in the result).
+///
+/// \tparam PolygonMesh model of `MutableFaceGraph`
+/// \param pmesh a valid polygon mesh
+/// \param np optional:
+///   - `min_component_faces` (std::size_t, default 400, the paper's tables):
+///     components with fewer faces are removed
+///   - `visitor` (default `Default_visitor`): phase "remove_small_components";
+///     `stop_requested()` polled before any change
+/// \return `Small_components_result`; `status` is `ok`, `cancelled` or
+///   `invalid_parameter` (threshold 0); `pmesh` stays valid
+template <typename PolygonMesh,
+          typename NamedParameters = CGAL::parameters::Default_named_parameters>
+Small_components_result remove_small_components(
+    PolygonMesh& pmesh, const NamedParameters& np = CGAL::parameters::default_values())
+{
+  internal::Visitor_handle<NamedParameters> visitor(np);
+  internal::Phase_scope<internal::Visitor_handle<NamedParameters>> phase(
+      visitor, "remove_small_components");
+  const std::size_t threshold =
+      internal::get_or(np, internal_np::min_component_faces, std::size_t(400));
+  Small_components_result r;
+  if (threshold == 0) {
+    r.status = Status::invalid_parameter;
+    return r;
+  }
+  if (visitor.stop_requested()) {
+    r.status = Status::cancelled;
+    return r;
+  }
+  r = internal::clean_pipeline::remove_small_components_seeded(
+      pmesh, faces(pmesh), threshold, internal::clean_pipeline::edit_observer(np));
+  visitor.progress(1.);
+  return r;
+}
+
+}  // namespace mrepair
+
+#endif  // MREPAIR_REMOVE_SMALL_COMPONENTS_H

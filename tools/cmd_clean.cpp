@@ -1,0 +1,139 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// `mrepair clean INPUT OUTPUT`: the RameshCleaner pipeline on a manifold
+// triangle mesh, one progress line per step.
+#include "cli.h"
+
+#include <mrepair/clean_scan_mesh.h>
+#include <mrepair/internal/clean_scan_mesh/soup_check.h>
+#include <mrepair/io.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace {
+
+using K = CGAL::Epick;
+using Mesh = CGAL::Surface_mesh<K::Point_3>;
+namespace MP = mrepair::parameters;
+namespace cli = mrepair::cli;
+
+const std::vector<cli::Option>& clean_options()
+{
+  static const std::vector<cli::Option> o = {
+      {"spike-angle", true, "dihedral angle (degrees) of a spiked vertex (default of relax_spikes: 100)"},
+      {"max-hole", true, "holes with fewer boundary vertices are filled (100)"},
+      {"min-component", true, "components with fewer faces are removed (400)"},
+      {"iterations", true, "iteration cap (5)"},
+      {"boundary-angle", true, "dihedral angle (degrees) of a bad boundary vertex (120)"},
+      {"density", true, "hole patch edge length / hole border mean edge length (1)"},
+      {"fair", false, "fair the hole patches"},
+      {"only", true, "run only these steps (comma-separated; see below)"},
+      {"skip", true, "skip these steps (comma-separated): remove_degenerate_vertices, "
+                     "relax_spikes, remove_unrelaxable_spikes, clean_boundaries, "
+                     "remove_small_components, fill_small_holes, fix_near_degenerate_faces, "
+                     "relax_spikes_again"},
+      {"binary", false, "write a binary file (PLY, STL)"}};
+  return o;
+}
+
+unsigned parse_steps(const std::string& list)
+{
+  unsigned m = 0;
+  std::stringstream ss(list);
+  std::string name;
+  while (std::getline(ss, name, ',')) {
+    if (name.empty()) continue;
+    unsigned s = mrepair::parse_clean_step(name);
+    if (s == 0) throw cli::Usage_error("unknown step '" + name + "'");
+    m |= s;
+  }
+  return m;
+}
+
+std::size_t get_count(const cli::Arguments& a, const std::string& name, long long fallback)
+{
+  long long v = a.get_int(name, fallback);
+  if (v < 0) throw cli::Usage_error("--" + name + " must not be negative");
+  return static_cast<std::size_t>(v);
+}
+
+int run_clean(int argc, char** argv)
+{
+  static const cli::Command self{"clean", "INPUT OUTPUT [options]", "", nullptr};
+  cli::Arguments a = cli::parse(argc, argv, 1, clean_options(), 2, 2);
+  if (a.has("help")) {
+    cli::print_help(self, clean_options());
+    return 0;
+  }
+  unsigned mask = mrepair::clean_step_all;
+  if (a.has("only")) mask = parse_steps(a.get("only"));
+  if (a.has("skip")) mask &= ~parse_steps(a.get("skip"));
+  const double spike = a.get_double("spike-angle", std::numeric_limits<double>::quiet_NaN());
+  const std::size_t max_hole = get_count(a, "max-hole", 100);
+  const std::size_t min_comp = get_count(a, "min-component", 400);
+  const std::size_t iterations = get_count(a, "iterations", 5);
+  const double boundary_angle = a.get_double("boundary-angle", 120.);
+  const double density = a.get_double("density", 1.);
+
+  const bool quiet = a.has("quiet") || a.has("json");
+  cli::Progress_printer printer(!quiet);
+  mrepair::Report report;
+
+  // Read a soup (NaN points are accepted: the pipeline removes them), then
+  // build the mesh if the polygons form a manifold mesh.
+  std::vector<K::Point_3> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  mrepair::Io_result in;
+  double t_read = cli::timed([&] { in = mrepair::read_polygon_soup(a.positional[0], points, polygons); });
+  if (in.status != mrepair::Status::ok && in.status != mrepair::Status::non_finite_input)
+    return cli::fail(in.message.empty() ? a.positional[0] + ": cannot read" : in.message);
+  if (!mrepair::internal::clean_pipeline::is_soup_a_polygon_mesh(polygons, points.size()))
+    return cli::fail(a.positional[0] +
+                     ": not a manifold, consistently oriented polygon mesh; run `mrepair repair`");
+  Mesh mesh;
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  points.clear();
+  polygons.clear();
+  if (!quiet) std::cerr << "  read: " << std::to_string(t_read).substr(0, 6) << " s\n";
+
+  auto np = MP::clean_steps(
+      mask, MP::max_hole_vertices(
+                max_hole, MP::min_component_faces(
+                              min_comp, MP::max_clean_iterations(
+                                            iterations, MP::boundary_dihedral_angle(
+                                                            boundary_angle,
+                                                            MP::hole_density_factor(
+                                                                density,
+                                                                MP::fair_hole_patches(
+                                                                    a.has("fair"),
+                                                                    MP::spike_angle(spike))))))));
+  // spike_angle NaN (not given) means "the relax_spikes default" in the pipeline.
+  mrepair::Scan_cleaning_result r = mrepair::clean_scan_mesh(mesh, np.visitor(std::ref(printer)));
+  in.to_report(report.section("input"));
+  r.to_report(report.section("clean"));
+  if (!mrepair::succeeded(r.status)) {
+    cli::emit_report(a, report);
+    return cli::fail("clean: " + std::string(mrepair::to_string(r.status)) +
+                     (r.message.empty() ? "" : ": " + r.message));
+  }
+  mrepair::Io_result out;
+  double t_write =
+      cli::timed([&] { out = mrepair::write_polygon_mesh(a.positional[1], mesh, a.has("binary")); });
+  if (!quiet) std::cerr << "  write: " << std::to_string(t_write).substr(0, 6) << " s\n";
+  out.to_report(report.section("output"));
+  if (!cli::emit_report(a, report)) return 1;
+  if (out.status != mrepair::Status::ok)
+    return cli::fail(out.message.empty() ? a.positional[1] + ": cannot write" : out.message);
+  return cli::exit_code(r.status);
+}
+
+cli::Registrar reg{{"clean", "INPUT OUTPUT [--spike-angle A] [--max-hole N] [--min-component N] "
+                             "[--iterations K] [--only STEP,..] [--skip STEP,..]",
+                    "clean a scanned manifold mesh (RameshCleaner pipeline)", run_clean}};
+
+}  // namespace

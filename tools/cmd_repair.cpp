@@ -1,0 +1,173 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// `mrepair repair INPUT OUTPUT`: the whole job for a scanned mesh file:
+// soup to manifold mesh (when the input is not one), gap closing (when
+// asked), then the RameshCleaner pipeline; inspection before and after.
+#include "cli.h"
+
+#include <mrepair/clean_scan_mesh.h>
+#include <mrepair/internal/clean_scan_mesh/soup_check.h>
+#include <mrepair/close_gaps.h>
+#include <mrepair/inspect.h>
+#include <mrepair/io.h>
+#include <mrepair/stitch_soup.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <cmath>
+#include <limits>
+
+namespace {
+
+using K = CGAL::Epick;
+using Mesh = CGAL::Surface_mesh<K::Point_3>;
+namespace MP = mrepair::parameters;
+namespace cli = mrepair::cli;
+
+const std::vector<cli::Option>& repair_options()
+{
+  static const std::vector<cli::Option> o = {
+      {"close-gaps", true, "close boundary gaps narrower than T (model units; 0: off)"},
+      {"merge-epsilon", true, "merge soup points closer than E before stitching (0)"},
+      {"spike-angle", true, "dihedral angle (degrees) of a spiked vertex (relax_spikes default)"},
+      {"max-hole", true, "holes with fewer boundary vertices are filled (100)"},
+      {"min-component", true, "components with fewer faces are removed (400)"},
+      {"iterations", true, "cleaning iteration cap (5)"},
+      {"no-self-intersections", false, "do not count self-intersections in the inspections"},
+      {"binary", false, "write a binary file (PLY, STL)"}};
+  return o;
+}
+
+void print_inspection(const char* title, const mrepair::Inspection_report& i, bool quiet)
+{
+  if (quiet) return;
+  std::cerr << title << ": " << i.vertices << " vertices, " << i.faces << " faces; "
+            << "non-finite " << i.non_finite_vertices << ", isolated " << i.isolated_vertices
+            << ", non-manifold edges " << i.non_manifold_edges << ", non-manifold vertices "
+            << i.non_manifold_vertices << ", components " << i.connected_components << " ("
+            << i.small_components << " small), boundary loops " << i.boundary_loops << " ("
+            << i.small_holes << " small), near-degenerate " << i.near_degenerate_faces
+            << ", spiked " << i.spiked_vertices;
+  if (i.self_intersections_counted)
+    std::cerr << ", self-intersecting pairs " << i.self_intersecting_pairs;
+  std::cerr << "\n";
+}
+
+int run_repair(int argc, char** argv)
+{
+  static const cli::Command self{"repair", "INPUT OUTPUT [options]", "", nullptr};
+  cli::Arguments a = cli::parse(argc, argv, 1, repair_options(), 2, 2);
+  if (a.has("help")) {
+    cli::print_help(self, repair_options());
+    return 0;
+  }
+  const double gap = a.get_double("close-gaps", 0.);
+  const double merge = a.get_double("merge-epsilon", 0.);
+  if (gap < 0. || merge < 0.) throw cli::Usage_error("--close-gaps and --merge-epsilon must be >= 0");
+  const double spike = a.get_double("spike-angle", std::numeric_limits<double>::quiet_NaN());
+  long long max_hole = a.get_int("max-hole", 100), min_comp = a.get_int("min-component", 400),
+            iterations = a.get_int("iterations", 5);
+  if (max_hole < 1 || min_comp < 1 || iterations < 0)
+    throw cli::Usage_error("--max-hole and --min-component must be >= 1, --iterations >= 0");
+  const bool quiet = a.has("quiet") || a.has("json");
+  const bool count_si = !a.has("no-self-intersections");
+  const std::size_t hole_n = static_cast<std::size_t>(max_hole),
+                    comp_n = static_cast<std::size_t>(min_comp);
+  cli::Progress_printer printer(!quiet);
+  mrepair::Report report;
+
+  std::vector<K::Point_3> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  mrepair::Io_result in;
+  double t = cli::timed([&] { in = mrepair::read_polygon_soup(a.positional[0], points, polygons); });
+  if (!quiet) std::cerr << "  read: " << std::to_string(t).substr(0, 6) << " s\n";
+  if (in.status != mrepair::Status::ok && in.status != mrepair::Status::non_finite_input &&
+      in.status != mrepair::Status::invalid_index)
+    return cli::fail(in.message.empty() ? a.positional[0] + ": cannot read" : in.message);
+  in.to_report(report.section("input"));
+
+  const double inspect_spike = std::isnan(spike) ? 100. : spike;  // inspect's default is 100
+  auto thresholds = MP::max_hole_vertices(
+      hole_n, MP::min_component_faces(comp_n, MP::spike_angle(inspect_spike)));
+  mrepair::Inspection_report before = mrepair::inspect_polygon_soup(points, polygons, thresholds);
+  before.to_report(report.section("before"));
+  print_inspection("before", before, quiet);
+
+  // 1. A manifold mesh, built directly when the soup already is one.
+  Mesh mesh;
+  const bool direct = in.status == mrepair::Status::ok &&
+                      mrepair::internal::clean_pipeline::is_soup_a_polygon_mesh(polygons, points.size());
+  if (direct) {
+    CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+    report.section("soup_to_manifold").add("needed", false);
+  } else {
+    mrepair::Soup_repair_result s;
+    {
+      mrepair::internal::Phase_scope<cli::Progress_printer> phase(printer, "soup_to_manifold");
+      s = mrepair::polygon_soup_to_manifold_mesh(points, polygons, mesh,
+                                                 MP::merge_epsilon(merge));
+    }
+    mrepair::Report& sr = report.section("soup_to_manifold");
+    sr.add("needed", true);
+    s.to_report(sr);
+    if (!mrepair::succeeded(s.status)) {
+      cli::emit_report(a, report);
+      return cli::fail("soup_to_manifold: " + std::string(mrepair::to_string(s.status)) +
+                       (s.message.empty() ? "" : ": " + s.message));
+    }
+  }
+  points.clear();
+  polygons.clear();
+
+  // 2. Gap closing, when asked.
+  if (gap > 0.) {
+    mrepair::Gap_closing_result g;
+    {
+      mrepair::internal::Phase_scope<cli::Progress_printer> phase(printer, "close_gaps");
+      g = mrepair::close_gaps(mesh, gap);
+    }
+    g.to_report(report.section("close_gaps"));
+    if (!mrepair::succeeded(g.status)) {
+      cli::emit_report(a, report);
+      return cli::fail("close_gaps: " + std::string(mrepair::to_string(g.status)));
+    }
+  }
+
+  // 3. The cleaning pipeline.
+  mrepair::Scan_cleaning_result c = mrepair::clean_scan_mesh(
+      mesh, MP::max_hole_vertices(
+                hole_n, MP::min_component_faces(
+                            comp_n, MP::max_clean_iterations(static_cast<std::size_t>(iterations),
+                                                             MP::spike_angle(spike))))
+                .visitor(std::ref(printer)));
+  c.to_report(report.section("clean"));
+  if (!mrepair::succeeded(c.status) && c.status != mrepair::Status::empty_input) {
+    cli::emit_report(a, report);
+    return cli::fail("clean: " + std::string(mrepair::to_string(c.status)) +
+                     (c.message.empty() ? "" : ": " + c.message));
+  }
+
+  mrepair::Inspection_report after =
+      mrepair::inspect(mesh, MP::max_hole_vertices(
+                                 hole_n, MP::min_component_faces(
+                                             comp_n, MP::spike_angle(
+                                                         inspect_spike,
+                                                         MP::count_self_intersections(count_si)))));
+  after.to_report(report.section("after"));
+  print_inspection("after", after, quiet);
+
+  mrepair::Io_result out;
+  t = cli::timed([&] { out = mrepair::write_polygon_mesh(a.positional[1], mesh, a.has("binary")); });
+  if (!quiet) std::cerr << "  write: " << std::to_string(t).substr(0, 6) << " s\n";
+  out.to_report(report.section("output"));
+  if (!cli::emit_report(a, report)) return 1;
+  if (out.status != mrepair::Status::ok)
+    return cli::fail(out.message.empty() ? a.positional[1] + ": cannot write" : out.message);
+  return cli::exit_code(c.status);
+}
+
+cli::Registrar reg{{"repair", "INPUT OUTPUT [--close-gaps T] [--max-hole N] [--min-component N]",
+                    "soup to manifold, gap closing, scan cleaning: the whole job", run_repair}};
+
+}  // namespace
