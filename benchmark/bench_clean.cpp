@@ -16,7 +16,6 @@
 #include "bench.h"
 
 #include <mrepair/clean_scan_mesh.h>
-#include <mrepair/internal/clean_scan_mesh/soup_check.h>
 #include <mrepair/inspect.h>
 #include <mrepair/io.h>
 
@@ -60,7 +59,7 @@ Mesh load(const std::string& path, double* seconds = nullptr)
   mrepair::Io_result r = mrepair::read_polygon_soup(path, pts, polys);
   if (r.status != mrepair::Status::ok && r.status != mrepair::Status::non_finite_input)
     throw std::runtime_error("cannot read " + path + ": " + r.message);
-  if (!mrepair::internal::clean_pipeline::is_soup_a_polygon_mesh(polys, pts.size()))
+  if (!mrepair::is_polygon_soup_a_polygon_mesh(polys, pts.size()))
     throw std::runtime_error(path + " is not a manifold polygon mesh");
   Mesh m;
   PMP::polygon_soup_to_polygon_mesh(pts, polys, m);

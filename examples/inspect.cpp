@@ -53,7 +53,7 @@ int main(int argc, char** argv)
   soup.to_report(report);
   std::cout << "--- polygon soup ---\n" << report.to_text();
 
-  if (soup.invalid_polygons == 0 && PMP::is_polygon_soup_a_polygon_mesh(polygons)) {
+  if (soup.invalid_polygons == 0 && mrepair::is_polygon_soup_a_polygon_mesh(polygons, points.size())) {
     CGAL::Surface_mesh<Point> sm;
     PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
     mrepair::Inspection_report r = mrepair::inspect(sm, np);

@@ -7,7 +7,6 @@
 #include <mrepair/clean_scan_mesh.h>
 #include <mrepair/fill_small_holes.h>
 #include <mrepair/geometric_statistics.h>
-#include <mrepair/internal/clean_scan_mesh/soup_check.h>
 #include <mrepair/io.h>
 #include <mrepair/remove_small_components.h>
 
@@ -393,9 +392,9 @@ TYPED_TEST(Clean_pipeline, aborted_fill_of_a_slit_is_enlarged_and_filled)
 // The fast soup check of the CLI agrees with PMP::is_polygon_soup_a_polygon_mesh.
 TEST(Clean_pipeline_soup_check, agrees_with_cgal)
 {
-  using mrepair::internal::clean_pipeline::is_soup_a_polygon_mesh;
+  using mrepair::is_polygon_soup_a_polygon_mesh;
   auto both = [](const Soup& s) {
-    bool a = is_soup_a_polygon_mesh(s.polygons, s.points.size());
+    bool a = is_polygon_soup_a_polygon_mesh(s.polygons, s.points.size());
     bool b = PMP::is_polygon_soup_a_polygon_mesh(s.polygons);
     EXPECT_EQ(a, b);
     return a;
@@ -418,10 +417,10 @@ TEST(Clean_pipeline_soup_check, agrees_with_cgal)
   EXPECT_FALSE(both(bow));
   Soup repeated = grid(1, 1);
   repeated.polygons[0] = {0, 1, 0, 3};
-  EXPECT_FALSE(is_soup_a_polygon_mesh(repeated.polygons, repeated.points.size()));
+  EXPECT_FALSE(is_polygon_soup_a_polygon_mesh(repeated.polygons, repeated.points.size()));
   Soup out_of_range = grid(1, 1);
   out_of_range.polygons[0][0] = 99;
-  EXPECT_FALSE(is_soup_a_polygon_mesh(out_of_range.polygons, out_of_range.points.size()));
+  EXPECT_FALSE(is_polygon_soup_a_polygon_mesh(out_of_range.polygons, out_of_range.points.size()));
 }
 
 // ---- statistics kept current through the edit observer ----------------------

@@ -4,7 +4,6 @@
 #include "cli.h"
 
 #include <mrepair/clean_scan_mesh.h>
-#include <mrepair/internal/clean_scan_mesh/soup_check.h>
 #include <mrepair/io.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -92,7 +91,7 @@ int run_clean(int argc, char** argv)
   double t_read = cli::timed([&] { in = mrepair::read_polygon_soup(a.positional[0], points, polygons); });
   if (in.status != mrepair::Status::ok && in.status != mrepair::Status::non_finite_input)
     return cli::fail(in.message.empty() ? a.positional[0] + ": cannot read" : in.message);
-  if (!mrepair::internal::clean_pipeline::is_soup_a_polygon_mesh(polygons, points.size()))
+  if (!mrepair::is_polygon_soup_a_polygon_mesh(polygons, points.size()))
     return cli::fail(a.positional[0] +
                      ": not a manifold, consistently oriented polygon mesh; run `mrepair repair`");
   Mesh mesh;

@@ -87,7 +87,7 @@ int run(int argc, char** argv)
   // The mesh view: only when the polygons form a valid polygon mesh.
   mrepair::Report& mesh_section = report.section("mesh");
   const bool is_mesh = soup.invalid_polygons == 0 && !polygons.empty() &&
-                       CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(polygons);
+                       mrepair::is_polygon_soup_a_polygon_mesh(polygons, points.size());
   mesh_section.add("built", is_mesh);
   if (is_mesh) {
     Mesh mesh;

@@ -5,7 +5,6 @@
 #include "cli.h"
 
 #include <mrepair/clean_scan_mesh.h>
-#include <mrepair/internal/clean_scan_mesh/soup_check.h>
 #include <mrepair/close_gaps.h>
 #include <mrepair/inspect.h>
 #include <mrepair/io.h>
@@ -97,7 +96,7 @@ int run_repair(int argc, char** argv)
   // 1. A manifold mesh, built directly when the soup already is one.
   Mesh mesh;
   const bool direct = in.status == mrepair::Status::ok &&
-                      mrepair::internal::clean_pipeline::is_soup_a_polygon_mesh(polygons, points.size());
+                      mrepair::is_polygon_soup_a_polygon_mesh(polygons, points.size());
   if (direct) {
     CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, mesh);
     report.section("soup_to_manifold").add("needed", false);

@@ -1,0 +1,323 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// The input surface kept for back-projection: a triangle soup with an AABB
+// tree, the input feature/boundary polylines as segments with their own tree,
+// and the sizing field (target edge length per input vertex).
+#ifndef MREPAIR_INTERNAL_REMESH_REFERENCE_SURFACE_H
+#define MREPAIR_INTERNAL_REMESH_REFERENCE_SURFACE_H
+
+#include <CGAL/AABB_segment_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace mrepair {
+namespace internal {
+namespace remesh {
+
+/// plain double vector; all constructions of the remesher use it.
+struct Vec3
+{
+  double x = 0, y = 0, z = 0;
+  Vec3() = default;
+  Vec3(double a, double b, double c) : x(a), y(b), z(c) {}
+  Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
+  Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
+  Vec3& operator*=(double s) { x *= s; y *= s; z *= s; return *this; }
+};
+inline Vec3 operator+(Vec3 a, const Vec3& b) { return a += b; }
+inline Vec3 operator-(Vec3 a, const Vec3& b) { return a -= b; }
+inline Vec3 operator*(Vec3 a, double s) { return a *= s; }
+inline Vec3 operator*(double s, Vec3 a) { return a *= s; }
+inline double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 cross(const Vec3& a, const Vec3& b)
+{
+  return Vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+inline double sqlen(const Vec3& a) { return dot(a, a); }
+inline double len(const Vec3& a) { return std::sqrt(dot(a, a)); }
+
+class Reference_surface
+{
+  using K = CGAL::Epick;
+  using Tri_vec = std::vector<K::Triangle_3>;
+  using Seg_vec = std::vector<K::Segment_3>;
+  using Tri_prim = CGAL::AABB_triangle_primitive<K, Tri_vec::const_iterator>;
+  using Seg_prim = CGAL::AABB_segment_primitive<K, Seg_vec::const_iterator>;
+  using Tri_tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Tri_prim>>;
+  using Seg_tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Seg_prim>>;
+
+  Tri_vec tri_geo_;
+  Seg_vec seg_geo_;
+  std::unique_ptr<Tri_tree> tri_tree_;
+  std::unique_ptr<Seg_tree> seg_tree_;
+
+  static K::Point_3 kp(const Vec3& p) { return K::Point_3(p.x, p.y, p.z); }
+  static Vec3 vp(const K::Point_3& p) { return Vec3(p.x(), p.y(), p.z()); }
+
+public:
+  std::vector<Vec3> points;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<std::array<int, 2>> segments;  // feature and boundary edges
+  std::vector<char> on_line;                 // point lies on a segment (or is frozen)
+  std::vector<double> sizing;                // target edge length per point
+  int smoothing_passes = 3;                  // of the curvature before sizing
+
+  std::vector<int> star_begin, star;  // triangles around each point (CSR)
+
+  /// builds both trees and the vertex stars; call once after filling
+  /// points/triangles/segments.
+  void build()
+  {
+    star_begin.assign(points.size() + 1, 0);
+    for (const auto& t : triangles)
+      for (int k = 0; k < 3; ++k) ++star_begin[t[k] + 1];
+    for (std::size_t i = 0; i < points.size(); ++i) star_begin[i + 1] += star_begin[i];
+    star.assign(star_begin.back(), 0);
+    {
+      std::vector<int> fill(star_begin.begin(), star_begin.end() - 1);
+      for (std::size_t i = 0; i < triangles.size(); ++i)
+        for (int k = 0; k < 3; ++k) star[fill[triangles[i][k]]++] = static_cast<int>(i);
+    }
+    tri_geo_.clear();
+    tri_geo_.reserve(triangles.size());
+    for (const auto& t : triangles)
+      tri_geo_.emplace_back(kp(points[t[0]]), kp(points[t[1]]), kp(points[t[2]]));
+    seg_geo_.clear();
+    seg_geo_.reserve(segments.size());
+    for (const auto& s : segments) seg_geo_.emplace_back(kp(points[s[0]]), kp(points[s[1]]));
+    tri_tree_.reset();
+    seg_tree_.reset();
+    if (!tri_geo_.empty()) {
+      tri_tree_.reset(new Tri_tree(tri_geo_.cbegin(), tri_geo_.cend()));
+      tri_tree_->build();
+      tri_tree_->accelerate_distance_queries();
+    }
+    if (!seg_geo_.empty()) {
+      seg_tree_.reset(new Seg_tree(seg_geo_.cbegin(), seg_geo_.cend()));
+      seg_tree_->build();
+      seg_tree_->accelerate_distance_queries();
+    }
+  }
+
+  bool has_surface() const { return tri_tree_ != nullptr; }
+  bool has_lines() const { return seg_tree_ != nullptr; }
+
+  /// closest point of the input surface to `q`; `size` gets the sizing field there.
+  // closest point of triangle (a, b, c) to p with its barycentric coordinates
+  // (Ericson, Real-Time Collision Detection, 5.1.5)
+  static Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
+                                  double& u, double& v, double& w)
+  {
+    Vec3 ab = b - a, ac = c - a, ap = p - a;
+    double d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) { u = 1; v = w = 0; return a; }
+    Vec3 bp = p - b;
+    double d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) { v = 1; u = w = 0; return b; }
+    double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+      double t = d1 / (d1 - d3);
+      u = 1 - t; v = t; w = 0;
+      return a + t * ab;
+    }
+    Vec3 cp = p - c;
+    double d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) { w = 1; u = v = 0; return c; }
+    double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+      double t = d2 / (d2 - d6);
+      u = 1 - t; v = 0; w = t;
+      return a + t * ac;
+    }
+    double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+      double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+      u = 0; v = 1 - t; w = t;
+      return b + t * (c - b);
+    }
+    double den = va + vb + vc;
+    if (!(den > 0)) { u = 1; v = w = 0; return a; }  // degenerate triangle
+    v = vb / den;
+    w = vc / den;
+    u = 1 - v - w;
+    return a + v * ab + w * ac;
+  }
+
+  /// closest point to `q` found by descending from triangle `hint` through
+  /// the vertex stars of the input (vertices move a fraction of an edge per
+  /// iteration, so this is local); falls back to the AABB tree when there is
+  /// no hint or the local answer is farther than `max_dist`.
+  Vec3 project_surface(const Vec3& q, double& size, int& hint, double max_dist) const
+  {
+    if (hint >= 0 && hint < int(triangles.size())) {
+      int cur = hint, best = -1;
+      double bd = std::numeric_limits<double>::infinity(), bu = 0, bv = 0, bw = 0;
+      Vec3 bp;
+      for (int step = 0; step < 16; ++step) {
+        int before = best;
+        for (int k = 0; k < 3; ++k) {
+          int pv = triangles[cur][k];
+          for (int j = star_begin[pv]; j < star_begin[pv + 1]; ++j) {
+            int t = star[j];
+            const auto& tr = triangles[t];
+            double u, v, w;
+            Vec3 p = closest_on_triangle(q, points[tr[0]], points[tr[1]], points[tr[2]], u, v, w);
+            double d = sqlen(p - q);
+            if (d < bd) { bd = d; best = t; bp = p; bu = u; bv = v; bw = w; }
+          }
+        }
+        if (best == before) break;
+        cur = best;
+      }
+      if (best >= 0 && bd <= max_dist * max_dist) {
+        hint = best;
+        const auto& t = triangles[best];
+        size = bu * sizing[t[0]] + bv * sizing[t[1]] + bw * sizing[t[2]];
+        return bp;
+      }
+    }
+    return project_surface_tree(q, size, hint);
+  }
+
+  /// closest point by the AABB tree; `hint` gets the triangle found.
+  Vec3 project_surface_tree(const Vec3& q, double& size, int& hint) const
+  {
+    auto pp = hint >= 0 && hint < int(triangles.size())
+                  ? tri_tree_->closest_point_and_primitive(
+                        kp(q), std::make_pair(kp(points[triangles[hint][0]]), tri_geo_.cbegin() + hint))
+                  : tri_tree_->closest_point_and_primitive(kp(q));
+    std::size_t i = static_cast<std::size_t>(pp.second - tri_geo_.cbegin());
+    hint = static_cast<int>(i);
+    Vec3 p = vp(pp.first);
+    const auto& t = triangles[i];
+    // barycentric coordinates of p in the triangle (clamped: p lies on it)
+    const Vec3 &a = points[t[0]], &b = points[t[1]], &c = points[t[2]];
+    Vec3 v0 = b - a, v1 = c - a, v2 = p - a;
+    double d00 = dot(v0, v0), d01 = dot(v0, v1), d11 = dot(v1, v1), d20 = dot(v2, v0),
+           d21 = dot(v2, v1);
+    double den = d00 * d11 - d01 * d01;
+    double u = 1. / 3, v = 1. / 3, w = 1. / 3;
+    if (den > 0) {
+      v = std::clamp((d11 * d20 - d01 * d21) / den, 0., 1.);
+      w = std::clamp((d00 * d21 - d01 * d20) / den, 0., 1.);
+      u = std::max(0., 1. - v - w);
+      double s = u + v + w;
+      u /= s; v /= s; w /= s;
+    }
+    size = u * sizing[t[0]] + v * sizing[t[1]] + w * sizing[t[2]];
+    return p;
+  }
+
+  /// closest point of the input feature/boundary polylines to `q`.
+  Vec3 project_line(const Vec3& q, double& size, int& hint) const
+  {
+    auto pp = hint >= 0 && hint < int(segments.size())
+                  ? seg_tree_->closest_point_and_primitive(
+                        kp(q), std::make_pair(kp(points[segments[hint][0]]), seg_geo_.cbegin() + hint))
+                  : seg_tree_->closest_point_and_primitive(kp(q));
+    std::size_t i = static_cast<std::size_t>(pp.second - seg_geo_.cbegin());
+    hint = static_cast<int>(i);
+    Vec3 p = vp(pp.first);
+    const auto& s = segments[i];
+    Vec3 d = points[s[1]] - points[s[0]];
+    double l2 = sqlen(d);
+    double t = l2 > 0 ? std::clamp(dot(p - points[s[0]], d) / l2, 0., 1.) : 0.5;
+    size = (1 - t) * sizing[s[0]] + t * sizing[s[1]];
+    return p;
+  }
+
+  /// curvature-based sizing (thesis 3.7): per point mean curvature H from the
+  /// cotangent Laplacian and Gaussian curvature K from the angle deficit, both
+  /// over the barycentric area; kappa = |H| + sqrt(max(H^2 - K, 0)) (largest
+  /// absolute principal curvature), smoothed once over the one-ring (scan
+  /// noise), rescaled by gamma, then L = sqrt(6 eps / kappa - 3 eps^2) clamped
+  /// to [lmin, lmax]. Points on lines take the mean of their non-line neighbours.
+  void compute_adaptive_sizing(double eps, double lmin, double lmax, double gamma)
+  {
+    const std::size_t n = points.size();
+    std::vector<Vec3> lap(n);
+    std::vector<double> area(n, 0.), angle(n, 0.);
+    for (const auto& t : triangles) {
+      const Vec3* p[3] = {&points[t[0]], &points[t[1]], &points[t[2]]};
+      double a2 = len(cross(*p[1] - *p[0], *p[2] - *p[0]));
+      if (!(a2 > 0)) continue;
+      for (int k = 0; k < 3; ++k) {
+        int i = t[k], j = t[(k + 1) % 3], l = t[(k + 2) % 3];
+        Vec3 e1 = points[j] - points[i], e2 = points[l] - points[i];
+        double c = dot(e1, e2);
+        double s = len(cross(e1, e2));
+        angle[i] += std::atan2(s, c);
+        area[i] += a2 / 6.;
+        // the angle at i is opposite edge (j,l): cot weight for that edge
+        double cot = std::clamp(c / s, -1e3, 1e3);
+        lap[j] += cot * (points[l] - points[j]);
+        lap[l] += cot * (points[j] - points[l]);
+      }
+    }
+    std::vector<double> kappa(n, 0.);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!(area[i] > 0)) continue;
+      double H = len(lap[i]) / (4. * area[i]);  // |Delta p| / 2 with Delta p = lap / (2A)
+      double K = (2. * M_PI - angle[i]) / area[i];
+      kappa[i] = std::abs(H) + std::sqrt(std::max(H * H - K, 0.));
+    }
+    // smoothing passes over the interior one-ring (line points excluded):
+    // the estimate is noisy on scans (thesis 5, Vorsatz et al. 2001)
+    std::vector<double> sum(n, 0.), cnt(n, 0.);
+    for (int pass = 0; pass < smoothing_passes; ++pass) {
+      std::fill(sum.begin(), sum.end(), 0.);
+      std::fill(cnt.begin(), cnt.end(), 0.);
+      for (const auto& t : triangles)
+        for (int k = 0; k < 3; ++k) {
+          int i = t[k], j = t[(k + 1) % 3];
+          if (!on_line[j]) { sum[i] += kappa[j]; cnt[i] += 1; }
+          if (!on_line[i]) { sum[j] += kappa[i]; cnt[j] += 1; }
+        }
+      for (std::size_t i = 0; i < n; ++i)
+        if (!on_line[i] && cnt[i] > 0) kappa[i] = 0.5 * kappa[i] + 0.5 * sum[i] / cnt[i];
+    }
+    double kmax = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!on_line[i] && std::isfinite(kappa[i])) kmax = std::max(kmax, kappa[i]);
+    sizing.assign(n, lmax);
+    for (std::size_t i = 0; i < n; ++i) {
+      double k = kappa[i];
+      if (!std::isfinite(k)) k = kmax;
+      if (gamma != 1. && kmax > 0) k = std::pow(k / kmax, gamma) * kmax;
+      double L = lmax;
+      if (k > 0) {
+        double q = 6. * eps / k - 3. * eps * eps;
+        L = q > 0 ? std::sqrt(q) : lmin;
+      }
+      sizing[i] = std::clamp(L, lmin, lmax);
+    }
+    // line points: mean of their non-line neighbours
+    std::fill(sum.begin(), sum.end(), 0.);
+    std::fill(cnt.begin(), cnt.end(), 0.);
+    for (const auto& t : triangles)
+      for (int k = 0; k < 3; ++k) {
+        int i = t[k], j = t[(k + 1) % 3];
+        if (on_line[i] && !on_line[j]) { sum[i] += sizing[j]; cnt[i] += 1; }
+        if (on_line[j] && !on_line[i]) { sum[j] += sizing[i]; cnt[j] += 1; }
+      }
+    // curvature on a line is the feature's, not the surface's: a line point
+    // without interior neighbours (a coarse CAD face) gets the largest length
+    for (std::size_t i = 0; i < n; ++i)
+      if (on_line[i]) sizing[i] = cnt[i] > 0 ? sum[i] / cnt[i] : lmax;
+  }
+};
+
+} // namespace remesh
+} // namespace internal
+} // namespace mrepair
+
+#endif // MREPAIR_INTERNAL_REMESH_REFERENCE_SURFACE_H

@@ -1,0 +1,761 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// The worker behind `isotropic_remesh` / `adaptive_remesh`: Botsch-Kobbelt
+// local operations driven by a per-vertex sizing field (Dunyach et al. 2013).
+//
+//   classify edges: 0 free, LINE (feature or boundary), FROZEN (outside the
+//                   part, its border, protected); vertices: free, line, frozen
+//   for it in 1..iterations:
+//     split   edges longer than 4/3 L(e) at their midpoint (repeat until none)
+//     collapse edges shorter than 4/5 L(e): link condition, no edge longer than
+//             4/3 L, no flipped normal, features only along themselves
+//     flip    free edges when the valence deviation (6 inside, 4 on boundary)
+//             decreases and no face flips or degenerates
+//     relax   free vertices to the area*size weighted face barycentre, in the
+//             tangent plane; line vertices to the weighted edge midpoints
+//     project onto the input (line vertices onto the input lines), reading the
+//             sizing field at the projection
+#ifndef MREPAIR_INTERNAL_REMESH_REMESHER_H
+#define MREPAIR_INTERNAL_REMESH_REMESHER_H
+
+#include <mrepair/internal/remesh/reference_surface.h>
+#include <mrepair/status.h>
+
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/properties.h>
+#include <CGAL/number_utils.h>
+
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+namespace mrepair {
+namespace internal {
+namespace remesh {
+
+enum : char { LINE = 1, FROZEN = 2, FEATURE = 4 };
+enum : char { V_FREE = 0, V_LINE = 1, V_FROZEN = 2 };
+
+template <typename VD>
+struct Is_sm_index : std::false_type {};
+template <>
+struct Is_sm_index<CGAL::SM_Vertex_index> : std::true_type {};
+
+struct Counters
+{
+  std::size_t splits = 0, collapses = 0, flips = 0, relaxed = 0, iterations = 0;
+};
+
+template <typename TriangleMesh, typename VertexPointMap, bool Parallel>
+class Remesher
+{
+  using GT = boost::graph_traits<TriangleMesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using edge_descriptor = typename GT::edge_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+  using Point = typename boost::property_traits<VertexPointMap>::value_type;
+
+  template <typename T>
+  using VMap = typename boost::property_map<TriangleMesh, CGAL::dynamic_vertex_property_t<T>>::type;
+  template <typename T>
+  using EMap = typename boost::property_map<TriangleMesh, CGAL::dynamic_edge_property_t<T>>::type;
+  template <typename T>
+  using HMap = typename boost::property_map<TriangleMesh, CGAL::dynamic_halfedge_property_t<T>>::type;
+  template <typename T>
+  using FMap = typename boost::property_map<TriangleMesh, CGAL::dynamic_face_property_t<T>>::type;
+
+  // Parallel passes only where property maps are flat arrays (Surface_mesh);
+  // Polyhedron_3's dynamic maps are hash maps, unsafe to read concurrently.
+  static constexpr bool parallel_ = Parallel && Is_sm_index<vertex_descriptor>::value;
+
+  TriangleMesh& tm_;
+  VertexPointMap vpm_;
+  VMap<Vec3> pos_;
+  VMap<double> size_;
+  VMap<char> kind_;
+  VMap<char> bnd_;
+  VMap<int> deg_;
+  VMap<int> ref_;
+  VMap<int> thint_;  // last reference triangle a vertex projected to (-1: none)
+  VMap<int> shint_;  // last reference segment
+  EMap<char> flag_;
+  HMap<unsigned> dead_;
+  unsigned stamp_ = 0;
+
+  Reference_surface ref;
+  bool uniform_ = true;
+  double L_ = 1;
+  double collapse_cos_ = 0.2;  // collapse rejected when a face normal turns more than ~78 deg
+  bool relax_lines_ = true;
+  double bad_angle_ = 20.;  // degrees: faces below it get the cleanup pass
+
+public:
+  Counters counters;
+  std::size_t feature_edges = 0, corners = 0;
+
+  Remesher(TriangleMesh& tm, VertexPointMap vpm)
+    : tm_(tm), vpm_(vpm),
+      pos_(get(CGAL::dynamic_vertex_property_t<Vec3>(), tm)),
+      size_(get(CGAL::dynamic_vertex_property_t<double>(), tm)),
+      kind_(get(CGAL::dynamic_vertex_property_t<char>(), tm)),
+      bnd_(get(CGAL::dynamic_vertex_property_t<char>(), tm)),
+      deg_(get(CGAL::dynamic_vertex_property_t<int>(), tm)),
+      ref_(get(CGAL::dynamic_vertex_property_t<int>(), tm)),
+      thint_(get(CGAL::dynamic_vertex_property_t<int>(), tm)),
+      shint_(get(CGAL::dynamic_vertex_property_t<int>(), tm)),
+      flag_(get(CGAL::dynamic_edge_property_t<char>(), tm)),
+      dead_(get(CGAL::dynamic_halfedge_property_t<unsigned>(), tm))
+  {}
+
+  const Reference_surface& reference() const { return ref; }
+  void set_relax_lines(bool b) { relax_lines_ = b; }
+
+  /// classifies edges and vertices and builds the reference surface.
+  /// `in_part(f)`: f belongs to the remeshed part; `is_feature(e)`: user or
+  /// dihedral feature; `is_fixed(v)`: user-constrained vertex.
+  template <typename InPart, typename IsFeature, typename IsFixed>
+  void setup(InPart in_part, IsFeature is_feature, IsFixed is_fixed, bool protect,
+             double cos_turn)
+  {
+    for (vertex_descriptor v : vertices(tm_)) {
+      const Point& p = get(vpm_, v);
+      put(pos_, v, Vec3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())));
+      put(size_, v, L_);
+      put(kind_, v, char(V_FREE));
+      put(bnd_, v, char(0));
+      put(deg_, v, 0);
+      put(ref_, v, -1);
+      put(thint_, v, -1);
+      put(shint_, v, -1);
+    }
+    for (halfedge_descriptor h : halfedges(tm_)) put(dead_, h, 0u);
+    // line/frozen edge counts per vertex, kept in deg_ for now
+    std::vector<vertex_descriptor> frozen_v;
+    for (edge_descriptor e : edges(tm_)) {
+      halfedge_descriptor h = halfedge(e, tm_), o = opposite(h, tm_);
+      face_descriptor f1 = face(h, tm_), f2 = face(o, tm_);
+      bool n1 = f1 == GT::null_face(), n2 = f2 == GT::null_face();
+      bool in1 = !n1 && in_part(f1), in2 = !n2 && in_part(f2);
+      char fl = 0;
+      if (!in1 && !in2)
+        fl = FROZEN;
+      else if ((!n1 && !in1) || (!n2 && !in2))
+        fl = FROZEN;
+      else if (n1 || n2)
+        fl = protect ? FROZEN : LINE;
+      else if (is_feature(e))
+        fl = char(FEATURE | (protect ? FROZEN : LINE));
+      put(flag_, e, fl);
+      vertex_descriptor a = source(h, tm_), b = target(h, tm_);
+      if (n1 || n2) { put(bnd_, a, char(1)); put(bnd_, b, char(1)); }
+      if (fl & FEATURE) ++feature_edges;
+      if (fl & FROZEN) {
+        // only vertices of the part matter; outside vertices are never touched
+        put(kind_, a, char(V_FROZEN));
+        put(kind_, b, char(V_FROZEN));
+      } else if (fl & LINE) {
+        put(deg_, a, get(deg_, a) + 1);
+        put(deg_, b, get(deg_, b) + 1);
+      }
+    }
+    for (vertex_descriptor v : vertices(tm_)) {
+      if (get(kind_, v) == V_FROZEN || is_fixed(v) || halfedge(v, tm_) == GT::null_halfedge()) {
+        put(kind_, v, char(V_FROZEN));
+        continue;
+      }
+      int c = get(deg_, v);
+      if (c == 2 && !sharp_turn(v, cos_turn))
+        put(kind_, v, char(V_LINE));
+      else if (c != 0) {
+        put(kind_, v, char(V_FROZEN));
+        ++corners;
+      }
+    }
+    // reference surface: the faces of the part
+    for (face_descriptor f : faces(tm_)) {
+      if (!in_part(f)) continue;
+      std::array<int, 3> t;
+      int k = 0;
+      for (vertex_descriptor v : vertices_around_face(halfedge(f, tm_), tm_)) {
+        int r = get(ref_, v);
+        if (r < 0) {
+          r = static_cast<int>(ref.points.size());
+          ref.points.push_back(get(pos_, v));
+          ref.on_line.push_back(get(kind_, v) != V_FREE || get(bnd_, v));
+          put(ref_, v, r);
+        }
+        if (k < 3) t[k] = r;
+        ++k;
+        put(thint_, v, static_cast<int>(ref.triangles.size()));
+      }
+      ref.triangles.push_back(t);
+    }
+    for (edge_descriptor e : edges(tm_)) {
+      char fl = get(flag_, e);
+      if (!(fl & LINE)) continue;
+      halfedge_descriptor h = halfedge(e, tm_);
+      put(shint_, source(h, tm_), static_cast<int>(ref.segments.size()));
+      put(shint_, target(h, tm_), static_cast<int>(ref.segments.size()));
+      ref.segments.push_back({get(ref_, source(h, tm_)), get(ref_, target(h, tm_))});
+    }
+    ref.build();
+  }
+
+  // a line vertex where its line turns by more than the feature angle is a corner
+  bool sharp_turn(vertex_descriptor v, double cos_turn) const
+  {
+    Vec3 d[2];
+    int k = 0;
+    const Vec3 pv = get(pos_, v);
+    for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
+      if (!(get(flag_, edge(g, tm_)) & LINE) || k == 2) continue;
+      d[k++] = pv - get(pos_, source(g, tm_));
+    }
+    if (k != 2) return true;
+    // d[0] points into v, -d[1] out of it: turning angle between them
+    double l = len(d[0]) * len(d[1]);
+    return !(l > 0) || -dot(d[0], d[1]) < cos_turn * l;
+  }
+
+  void set_uniform(double L)
+  {
+    uniform_ = true;
+    L_ = L;
+    ref.sizing.assign(ref.points.size(), L);
+    for (vertex_descriptor v : vertices(tm_)) put(size_, v, L);
+  }
+
+  void set_adaptive(double eps, double lmin, double lmax, double gamma)
+  {
+    uniform_ = false;
+    ref.compute_adaptive_sizing(eps, lmin, lmax, gamma);
+    for (vertex_descriptor v : vertices(tm_)) {
+      int r = get(ref_, v);
+      put(size_, v, r >= 0 ? ref.sizing[r] : lmax);
+    }
+  }
+
+  // ---------------------------------------------------------------- helpers
+  double tsize(vertex_descriptor a, vertex_descriptor b) const
+  {
+    return uniform_ ? L_ : std::min(get(size_, a), get(size_, b));
+  }
+  double sqlength(halfedge_descriptor h) const
+  {
+    return sqlen(get(pos_, target(h, tm_)) - get(pos_, source(h, tm_)));
+  }
+
+  // ------------------------------------------------------------------ split
+  void split(halfedge_descriptor h)
+  {
+    vertex_descriptor a = source(h, tm_), b = target(h, tm_);
+    char fl = get(flag_, edge(h, tm_));
+    Vec3 m = 0.5 * (get(pos_, a) + get(pos_, b));
+    double s = 0.5 * (get(size_, a) + get(size_, b));
+    bool border = CGAL::is_border_edge(h, tm_);
+    halfedge_descriptor hnew = CGAL::Euler::split_edge(h, tm_);  // a -> v, then h: v -> b
+    vertex_descriptor v = target(hnew, tm_);
+    put(pos_, v, m);
+    put(size_, v, s);
+    put(kind_, v, char((fl & LINE) ? V_LINE : V_FREE));
+    put(bnd_, v, char(border ? 1 : 0));
+    put(ref_, v, -1);
+    put(deg_, v, 0);
+    put(thint_, v, get(thint_, a));
+    put(shint_, v, get(shint_, a) >= 0 ? get(shint_, a) : get(shint_, b));
+    put(flag_, edge(hnew, tm_), fl);
+    put(dead_, hnew, 0u);
+    put(dead_, opposite(hnew, tm_), 0u);
+    if (!is_border(hnew, tm_)) {
+      halfedge_descriptor d = CGAL::Euler::split_face(hnew, next(h, tm_), tm_);
+      put(flag_, edge(d, tm_), char(0));
+      put(dead_, d, 0u);
+      put(dead_, opposite(d, tm_), 0u);
+    }
+    halfedge_descriptor o = opposite(h, tm_);
+    if (!is_border(o, tm_)) {
+      halfedge_descriptor d =
+          CGAL::Euler::split_face(o, next(opposite(hnew, tm_), tm_), tm_);
+      put(flag_, edge(d, tm_), char(0));
+      put(dead_, d, 0u);
+      put(dead_, opposite(d, tm_), 0u);
+    }
+    ++counters.splits;
+  }
+
+  void split_long_edges()
+  {
+    std::vector<halfedge_descriptor> cand;
+    for (int pass = 0; pass < 10; ++pass) {  // bounded: frozen long edges keep splitting their neighbours
+      cand.clear();
+      for (edge_descriptor e : edges(tm_)) {
+        if (get(flag_, e) & FROZEN) continue;
+        halfedge_descriptor h = halfedge(e, tm_);
+        double hi = 4. / 3. * tsize(source(h, tm_), target(h, tm_));
+        if (sqlength(h) > hi * hi) cand.push_back(h);
+      }
+      if (cand.empty()) break;
+      // splits leave the other candidates' end points unchanged
+      for (halfedge_descriptor h : cand) split(h);
+    }
+  }
+
+  // --------------------------------------------------------------- collapse
+  // may source(h) be removed into target(h)?
+  bool may_remove(halfedge_descriptor h) const
+  {
+    vertex_descriptor v0 = source(h, tm_);
+    char k = get(kind_, v0);
+    if (k == V_FREE) return true;
+    if (k != V_LINE) return false;
+    if (!(get(flag_, edge(h, tm_)) & LINE)) return false;
+    // sliding along a line: never merge two line edges of a triangle
+    if (!is_border(h, tm_) && (get(flag_, edge(next(h, tm_), tm_)) & (LINE | FROZEN)) &&
+        (get(flag_, edge(prev(h, tm_), tm_)) & (LINE | FROZEN)))
+      return false;
+    halfedge_descriptor o = opposite(h, tm_);
+    if (!is_border(o, tm_) && (get(flag_, edge(next(o, tm_), tm_)) & (LINE | FROZEN)) &&
+        (get(flag_, edge(prev(o, tm_), tm_)) & (LINE | FROZEN)))
+      return false;
+    return true;
+  }
+
+  bool geometry_ok(halfedge_descriptor h) const
+  {
+    vertex_descriptor v0 = source(h, tm_), v1 = target(h, tm_);
+    const Vec3 p0 = get(pos_, v0), p1 = get(pos_, v1);
+    for (halfedge_descriptor g : halfedges_around_target(v0, tm_)) {
+      vertex_descriptor w = source(g, tm_);
+      if (w == v1) continue;
+      double hi = 4. / 3. * tsize(v1, w);
+      if (sqlen(get(pos_, w) - p1) > hi * hi) return false;
+      if (is_border(g, tm_)) continue;
+      vertex_descriptor x = target(next(g, tm_), tm_);  // face (w, v0, x)
+      if (x == v1) continue;
+      const Vec3 pw = get(pos_, w), px = get(pos_, x);
+      Vec3 n0 = cross(p0 - pw, px - pw), n1 = cross(p1 - pw, px - pw);
+      double l0 = sqlen(n0), l1 = sqlen(n1);
+      if (!(l1 > 1e-24 * l0) || l1 == 0) return false;
+      double d = dot(n0, n1);
+      if (d <= 0 || d * d < collapse_cos_ * collapse_cos_ * l0 * l1) return false;
+    }
+    return true;
+  }
+
+  void mark_dead_around(vertex_descriptor v, unsigned value)
+  {
+    for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
+      put(dead_, g, value);
+      put(dead_, opposite(g, tm_), value);
+    }
+  }
+
+  bool collapse(halfedge_descriptor h)
+  {
+    vertex_descriptor v0 = source(h, tm_), v1 = target(h, tm_);
+    // survivor's attributes
+    Vec3 p1 = get(pos_, v1);
+    double s1 = get(size_, v1);
+    char k1 = get(kind_, v1), b1 = get(bnd_, v1);
+    int r1 = get(ref_, v1), t1 = get(thint_, v1), g1 = get(shint_, v1);
+    // the edges merged by the collapse: their flags are or-ed
+    vertex_descriptor wl = GT::null_vertex(), wr = GT::null_vertex();
+    char fl = 0, fr = 0;
+    if (!is_border(h, tm_)) {
+      wl = target(next(h, tm_), tm_);
+      fl = get(flag_, edge(next(h, tm_), tm_)) | get(flag_, edge(prev(h, tm_), tm_));
+    }
+    halfedge_descriptor o = opposite(h, tm_);
+    if (!is_border(o, tm_)) {
+      wr = target(next(o, tm_), tm_);
+      fr = get(flag_, edge(next(o, tm_), tm_)) | get(flag_, edge(prev(o, tm_), tm_));
+    }
+    mark_dead_around(v0, stamp_);
+    mark_dead_around(v1, stamp_);
+    vertex_descriptor k = CGAL::Euler::collapse_edge(edge(h, tm_), tm_);
+    put(pos_, k, p1);
+    put(size_, k, s1);
+    put(kind_, k, k1);
+    put(bnd_, k, b1);
+    put(ref_, k, r1);
+    put(thint_, k, t1);
+    put(shint_, k, g1);
+    if (wl != GT::null_vertex()) {
+      auto he = halfedge(k, wl, tm_);
+      if (he.second) put(flag_, edge(he.first, tm_), fl);
+    }
+    if (wr != GT::null_vertex()) {
+      auto he = halfedge(k, wr, tm_);
+      if (he.second) put(flag_, edge(he.first, tm_), fr);
+    }
+    mark_dead_around(k, 0u);
+    ++counters.collapses;
+    return true;
+  }
+
+  bool try_collapse(halfedge_descriptor h)
+  {
+    edge_descriptor e = edge(h, tm_);
+    if (get(flag_, e) & FROZEN) return false;
+    halfedge_descriptor cands[2] = {h, opposite(h, tm_)};
+    // prefer removing the free end so that lines keep their vertices
+    if (get(kind_, source(h, tm_)) > get(kind_, target(h, tm_))) std::swap(cands[0], cands[1]);
+    for (halfedge_descriptor c : cands) {
+      if (!may_remove(c)) continue;
+      if (!geometry_ok(c)) continue;
+      if (!CGAL::Euler::does_satisfy_link_condition(e, tm_)) return false;
+      return collapse(c);
+    }
+    return false;
+  }
+
+  void collapse_short_edges()
+  {
+    ++stamp_;
+    std::vector<halfedge_descriptor> cand;
+    for (edge_descriptor e : edges(tm_)) {
+      if (get(flag_, e) & FROZEN) continue;
+      halfedge_descriptor h = halfedge(e, tm_);
+      double lo = 4. / 5. * tsize(source(h, tm_), target(h, tm_));
+      if (sqlength(h) < lo * lo) cand.push_back(h);
+    }
+    for (halfedge_descriptor h : cand) {
+      if (get(dead_, h) == stamp_) continue;  // removed or changed by an earlier collapse
+      double lo = 4. / 5. * tsize(source(h, tm_), target(h, tm_));
+      if (sqlength(h) >= lo * lo) continue;
+      try_collapse(h);
+    }
+  }
+
+  // ------------------------------------------------------------------- flip
+  void flip_edges()
+  {
+    for (vertex_descriptor v : vertices(tm_)) put(deg_, v, static_cast<int>(degree(v, tm_)));
+    std::vector<halfedge_descriptor> cand;
+    for (edge_descriptor e : edges(tm_))
+      if (get(flag_, e) == 0) cand.push_back(halfedge(e, tm_));
+    for (halfedge_descriptor h : cand) {
+      halfedge_descriptor o = opposite(h, tm_);
+      vertex_descriptor a = source(h, tm_), b = target(h, tm_);
+      vertex_descriptor c = target(next(h, tm_), tm_), d = target(next(o, tm_), tm_);
+      if (c == d) continue;
+      int da = get(deg_, a), db = get(deg_, b), dc = get(deg_, c), dd = get(deg_, d);
+      int ta = get(bnd_, a) ? 4 : 6, tb = get(bnd_, b) ? 4 : 6, tc = get(bnd_, c) ? 4 : 6,
+          td = get(bnd_, d) ? 4 : 6;
+      int before = std::abs(da - ta) + std::abs(db - tb) + std::abs(dc - tc) + std::abs(dd - td);
+      int after = std::abs(da - 1 - ta) + std::abs(db - 1 - tb) + std::abs(dc + 1 - tc) +
+                  std::abs(dd + 1 - td);
+      if (after >= before) continue;
+      if (da - 1 < (get(bnd_, a) ? 2 : 3) || db - 1 < (get(bnd_, b) ? 2 : 3)) continue;
+      const Vec3 pa = get(pos_, a), pb = get(pos_, b), pc = get(pos_, c), pd = get(pos_, d);
+      Vec3 m1 = cross(pb - pa, pc - pa), m2 = cross(pa - pb, pd - pb);  // (a,b,c), (b,a,d)
+      Vec3 n1 = cross(pd - pa, pc - pa), n2 = cross(pc - pb, pd - pb);  // (a,d,c), (b,c,d)
+      Vec3 m = m1 + m2;
+      double l1 = sqlen(n1), l2 = sqlen(n2), lm = sqlen(m1) + sqlen(m2);
+      if (!(l1 > 1e-12 * lm) || !(l2 > 1e-12 * lm)) continue;
+      if (dot(n1, m) <= 0 || dot(n2, m) <= 0 || dot(n1, n2) <= 0) continue;
+      if (halfedge(c, d, tm_).second) continue;
+      CGAL::Euler::flip_edge(h, tm_);
+      put(deg_, a, da - 1);
+      put(deg_, b, db - 1);
+      put(deg_, c, dc + 1);
+      put(deg_, d, dd + 1);
+      ++counters.flips;
+    }
+  }
+
+  // --------------------------------------------------- bad-triangle cleanup
+  // Near frozen vertices and feature lines relaxation cannot even out the
+  // triangles, so faces with an angle under `min_deg` get an angle-improving
+  // flip of their longest edge, or else the collapse of their shortest edge.
+  static double min_angle_cos(const Vec3& a, const Vec3& b, const Vec3& c)
+  {
+    // largest cosine of the three angles (= cosine of the smallest angle)
+    auto cosine = [](const Vec3& u, const Vec3& v) {
+      double l = std::sqrt(sqlen(u) * sqlen(v));
+      return l > 0 ? dot(u, v) / l : 1.;
+    };
+    return std::max({cosine(b - a, c - a), cosine(a - b, c - b), cosine(a - c, b - c)});
+  }
+
+  // min-angle cosine after flipping h, or 2 when the flip is not allowed
+  double flip_gain(halfedge_descriptor h) const
+  {
+    if (is_border(h, tm_) || is_border(opposite(h, tm_), tm_)) return 2.;
+    if (!flip_improves(h)) return 2.;
+    halfedge_descriptor o = opposite(h, tm_);
+    const Vec3 pa = get(pos_, source(h, tm_)), pb = get(pos_, target(h, tm_)),
+               pc = get(pos_, target(next(h, tm_), tm_)), pd = get(pos_, target(next(o, tm_), tm_));
+    return std::max(min_angle_cos(pa, pd, pc), min_angle_cos(pb, pc, pd));
+  }
+
+  bool flip_improves(halfedge_descriptor h) const
+  {
+    if (get(flag_, edge(h, tm_)) != 0) return false;
+    halfedge_descriptor o = opposite(h, tm_);
+    vertex_descriptor a = source(h, tm_), b = target(h, tm_);
+    vertex_descriptor c = target(next(h, tm_), tm_), d = target(next(o, tm_), tm_);
+    if (c == d) return false;
+    if (degree(a, tm_) <= 3 || degree(b, tm_) <= 3) return false;
+    const Vec3 pa = get(pos_, a), pb = get(pos_, b), pc = get(pos_, c), pd = get(pos_, d);
+    double before = std::max(min_angle_cos(pa, pb, pc), min_angle_cos(pb, pa, pd));
+    double after = std::max(min_angle_cos(pa, pd, pc), min_angle_cos(pb, pc, pd));
+    if (!(after < before)) return false;
+    Vec3 m = cross(pb - pa, pc - pa) + cross(pa - pb, pd - pb);
+    Vec3 n1 = cross(pd - pa, pc - pa), n2 = cross(pc - pb, pd - pb);
+    // the flipped pair must stay nearly coplanar with the old one (no ridge created)
+    double lm = len(m);
+    if (!(lm > 0) || dot(n1, m) <= 0.7 * len(n1) * lm || dot(n2, m) <= 0.7 * len(n2) * lm)
+      return false;
+    return !halfedge(c, d, tm_).second;
+  }
+
+  void fix_bad_triangles(double min_deg)
+  {
+    const double cthr = std::cos(min_deg * CGAL_PI / 180.);
+    std::vector<halfedge_descriptor> bad;
+    for (face_descriptor f : faces(tm_)) {
+      halfedge_descriptor h = halfedge(f, tm_);
+      const Vec3 a = get(pos_, source(h, tm_)), b = get(pos_, target(h, tm_)),
+                 c = get(pos_, target(next(h, tm_), tm_));
+      if (min_angle_cos(a, b, c) > cthr) bad.push_back(h);
+    }
+    if (bad.empty()) return;
+    ++stamp_;
+    for (halfedge_descriptor h : bad) {
+      if (get(dead_, h) == stamp_ || is_border(h, tm_)) continue;
+      halfedge_descriptor e3[3] = {h, next(h, tm_), prev(h, tm_)};
+      const Vec3 p[3] = {get(pos_, source(h, tm_)), get(pos_, target(h, tm_)),
+                         get(pos_, target(next(h, tm_), tm_))};
+      if (!(min_angle_cos(p[0], p[1], p[2]) > cthr)) continue;  // fixed meanwhile
+      int longest = 0, shortest = 0;
+      double l[3];
+      for (int i = 0; i < 3; ++i) {
+        l[i] = sqlen(p[(i + 1) % 3] - p[i]);
+        if (l[i] > l[longest]) longest = i;
+        if (l[i] < l[shortest]) shortest = i;
+      }
+      // the best angle-improving flip among the three edges
+      int bi = -1;
+      double bc = 2.;
+      for (int i = 0; i < 3; ++i) {
+        double c = flip_gain(e3[i]);
+        if (c < bc) { bc = c; bi = i; }
+      }
+      if (bi >= 0) {
+        CGAL::Euler::flip_edge(e3[bi], tm_);
+        ++counters.flips;
+        continue;
+      }
+      // a needle: remove its shortest edge when that is allowed
+      if (l[shortest] < 0.25 * l[longest] && try_collapse(e3[shortest])) continue;
+      // a short edge between two lines: slide one of its ends along its own line
+      if (l[shortest] < 0.5 * l[longest]) {
+        halfedge_descriptor hs = e3[shortest];
+        for (vertex_descriptor v : {source(hs, tm_), target(hs, tm_)}) {
+          if (get(kind_, v) != V_LINE) continue;
+          halfedge_descriptor best = GT::null_halfedge();
+          double bl = std::numeric_limits<double>::infinity();
+          for (halfedge_descriptor g : halfedges_around_source(v, tm_)) {
+            if (!(get(flag_, edge(g, tm_)) & LINE)) continue;
+            double lg = sqlength(g);
+            if (lg < bl) { bl = lg; best = g; }
+          }
+          if (best != GT::null_halfedge() && bl < 0.8 * 0.8 * l[longest] && may_remove(best) &&
+              geometry_ok(best) && CGAL::Euler::does_satisfy_link_condition(edge(best, tm_), tm_)) {
+            collapse(best);
+            break;
+          }
+        }
+      }
+    }
+  }
+
+  // ------------------------------------------------------- relax + project
+  template <typename F>
+  void for_each_index(std::size_t n, const F& f)
+  {
+#ifdef CGAL_LINKED_WITH_TBB
+    if (parallel_ && n > 2000) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 512),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+                        });
+      return;
+    }
+#endif
+    for (std::size_t i = 0; i < n; ++i) f(i);
+  }
+
+  Vec3 vertex_normal(vertex_descriptor v) const
+  {
+    Vec3 n;
+    const Vec3 pv = get(pos_, v);
+    for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
+      if (is_border(g, tm_)) continue;
+      n += cross(pv - get(pos_, source(g, tm_)), get(pos_, target(next(g, tm_), tm_)) - pv);
+    }
+    return n;
+  }
+
+  void relax_and_project(bool project)
+  {
+    std::vector<vertex_descriptor> vs;
+    for (vertex_descriptor v : vertices(tm_))
+      if (get(kind_, v) == V_FREE || (relax_lines_ && get(kind_, v) == V_LINE)) vs.push_back(v);
+    std::vector<Vec3> np(vs.size()), normal(vs.size()), old(vs.size());
+    std::vector<double> ns(vs.size());
+    const bool lines = ref.has_lines(), surf = ref.has_surface();
+    for_each_index(vs.size(), [&](std::size_t i) {
+      vertex_descriptor v = vs[i];
+      const Vec3 pv = get(pos_, v);
+      old[i] = pv;
+      Vec3 c;
+      double sw = 0;
+      Vec3 n;
+      if (get(kind_, v) == V_FREE) {
+        const double sv = uniform_ ? 1. : get(size_, v);
+        for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
+          if (is_border(g, tm_)) continue;
+          vertex_descriptor a = source(g, tm_), b = target(next(g, tm_), tm_);
+          const Vec3 pa = get(pos_, a), pb = get(pos_, b);
+          Vec3 cr = cross(pv - pa, pb - pv);
+          n += cr;
+          double w = len(cr);
+          if (!uniform_) w *= (get(size_, a) + get(size_, b) + sv) / 3.;
+          c += w * (pa + pb + pv);
+          sw += 3. * w;
+        }
+        if (sw > 0) {
+          c *= 1. / sw;
+          double nl = len(n);
+          if (nl > 0) {
+            n *= 1. / nl;
+            c += n * dot(n, pv - c);
+          }
+        } else
+          c = pv;
+      } else {
+        for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
+          if (!(get(flag_, edge(g, tm_)) & LINE)) continue;
+          vertex_descriptor a = source(g, tm_);
+          const Vec3 pa = get(pos_, a);
+          double w = len(pa - pv);
+          if (!uniform_) w *= 0.5 * (get(size_, a) + get(size_, v));
+          c += w * 0.5 * (pa + pv);
+          sw += w;
+        }
+        c = sw > 0 ? c * (1. / sw) : pv;
+        n = vertex_normal(v);
+      }
+      normal[i] = n;
+      double s = get(size_, v);
+      if (project) {
+        if (get(kind_, v) == V_FREE && surf) {
+          int hint = get(thint_, v);
+          c = ref.project_surface(c, s, hint, get(size_, v));
+          put(thint_, v, hint);  // own slot only: safe in parallel
+        } else if (get(kind_, v) == V_LINE && lines) {
+          int hint = get(shint_, v);
+          c = ref.project_line(c, s, hint);
+          put(shint_, v, hint);
+        }
+      }
+      np[i] = c;
+      ns[i] = s;
+    });
+    // apply (each vertex writes only its own slot)
+    for_each_index(vs.size(), [&](std::size_t i) {
+      put(pos_, vs[i], np[i]);
+      if (!uniform_) put(size_, vs[i], ns[i]);
+    });
+    // undo moves that fold a face over (checked against the normal before)
+    std::vector<char> bad(vs.size(), 0);
+    for_each_index(vs.size(), [&](std::size_t i) {
+      vertex_descriptor v = vs[i];
+      const Vec3 pv = get(pos_, v);
+      for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
+        if (is_border(g, tm_)) continue;
+        Vec3 fn = cross(pv - get(pos_, source(g, tm_)), get(pos_, target(next(g, tm_), tm_)) - pv);
+        if (dot(fn, normal[i]) <= 0) { bad[i] = 1; break; }
+      }
+    });
+    for (std::size_t i = 0; i < vs.size(); ++i) {
+      if (bad[i])
+        put(pos_, vs[i], old[i]);
+      else
+        ++counters.relaxed;
+    }
+  }
+
+  /// runs `iterations` rounds; `stop()` is polled between phases.
+  template <typename Visitor>
+  Status run(int iterations, bool project, Visitor& vis)
+  {
+    for (int it = 0; it < iterations; ++it) {
+      if (vis.stop_requested()) return Status::cancelled;
+      vis.start_phase("split");
+      split_long_edges();
+      vis.end_phase("split");
+      if (vis.stop_requested()) return Status::cancelled;
+      vis.start_phase("collapse");
+      collapse_short_edges();
+      vis.end_phase("collapse");
+      if (vis.stop_requested()) return Status::cancelled;
+      vis.start_phase("flip");
+      flip_edges();
+      vis.end_phase("flip");
+      if (vis.stop_requested()) return Status::cancelled;
+      vis.start_phase("relax");
+      relax_and_project(project);
+      vis.end_phase("relax");
+      vis.start_phase("cleanup");
+      fix_bad_triangles(bad_angle_);
+      vis.end_phase("cleanup");
+      ++counters.iterations;
+      vis.progress(double(it + 1) / double(iterations));
+    }
+    return Status::ok;
+  }
+
+  /// writes positions back to the vertex point map (only where they changed).
+  void write_back()
+  {
+    for (vertex_descriptor v : vertices(tm_)) {
+      const Vec3 q = get(pos_, v);
+      const Point& p = get(vpm_, v);
+      if (CGAL::to_double(p.x()) != q.x || CGAL::to_double(p.y()) != q.y ||
+          CGAL::to_double(p.z()) != q.z)
+        put(vpm_, v, Point(q.x, q.y, q.z));
+    }
+  }
+
+  /// true for edges that are features (user or detected) in the output.
+  bool is_feature(edge_descriptor e) const { return (get(flag_, e) & FEATURE) != 0; }
+
+  double mean_sizing() const
+  {
+    double s = 0;
+    std::size_t n = 0;
+    for (vertex_descriptor v : vertices(tm_))
+      if (get(kind_, v) != V_FROZEN || get(ref_, v) >= 0) { s += get(size_, v); ++n; }
+    return n ? s / n : 0.;
+  }
+};
+
+} // namespace remesh
+} // namespace internal
+} // namespace mrepair
+
+#endif // MREPAIR_INTERNAL_REMESH_REMESHER_H

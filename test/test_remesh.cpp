@@ -1,0 +1,342 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Tests of isotropic_remesh / adaptive_remesh / remesh_to_face_count (issue 7).
+#include <mrepair/adaptive_remesh.h>
+
+#include "fixtures.h"
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/boost/graph/IO/OFF.h>
+#include <CGAL/boost/graph/graph_concepts.h>
+
+#include <fstream>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+using namespace mrepair_test;
+namespace MP = mrepair::parameters;
+
+template <class C>
+class Remesh : public ::testing::Test
+{};
+TYPED_TEST_SUITE(Remesh, Mesh_configs);
+
+namespace {
+
+template <class Mesh>
+void expect_valid(const Mesh& m)
+{
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(CGAL::is_triangle_mesh(m));
+}
+
+// Polyhedron_3 and Surface_mesh both have `point(v)` through the vertex point map.
+template <class Mesh>
+Point pt(const Mesh& m, typename boost::graph_traits<Mesh>::vertex_descriptor v)
+{
+  return get(CGAL::vertex_point, m, v);
+}
+
+template <class Mesh>
+double mean_edge_length(const Mesh& m)
+{
+  double s = 0;
+  std::size_t n = 0;
+  for (auto e : edges(m)) {
+    auto h = halfedge(e, m);
+    s += std::sqrt(CGAL::squared_distance(pt(m, source(h, m)), pt(m, target(h, m))));
+    ++n;
+  }
+  return n ? s / n : 0;
+}
+
+template <class Mesh>
+double dihedral_cos(const Mesh& m, typename boost::graph_traits<Mesh>::halfedge_descriptor h)
+{
+  auto n = [&](typename boost::graph_traits<Mesh>::halfedge_descriptor g) {
+    Point a = pt(m, source(g, m)), b = pt(m, target(g, m)), c = pt(m, target(next(g, m), m));
+    return CGAL::cross_product(b - a, c - a);
+  };
+  auto n1 = n(h), n2 = n(opposite(h, m));
+  return n1 * n2 / std::sqrt(n1.squared_length() * n2.squared_length());
+}
+
+// max distance from the output's vertices, edge midpoints and face centroids to `ref`
+template <class Mesh>
+double one_sided_distance(const Mesh& out, const Mesh& ref)
+{
+  using Prim = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Prim>>;
+  Tree tree(faces(ref).first, faces(ref).second, ref);
+  tree.accelerate_distance_queries();
+  double d = 0;
+  for (auto f : faces(out)) {
+    auto h = halfedge(f, out);
+    Point a = pt(out, source(h, out)), b = pt(out, target(h, out)),
+          c = pt(out, target(next(h, out), out));
+    for (const Point& q : {a, CGAL::midpoint(a, b), CGAL::centroid(a, b, c)})
+      d = std::max(d, std::sqrt(tree.squared_distance(q)));
+  }
+  return d;
+}
+
+} // namespace
+
+TYPED_TEST(Remesh, concepts)
+{
+  using Mesh = typename TypeParam::Mesh;
+  BOOST_CONCEPT_ASSERT((CGAL::concepts::MutableFaceGraph<Mesh>));
+}
+
+// A unit cube keeps its 12 sharp edges as 12 polylines between its 8 corners.
+TYPED_TEST(Remesh, cube_keeps_edges_and_corners)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh m = to_mesh<Mesh>(cube(1.0));
+  auto r = mrepair::isotropic_remesh(m, 0.1);
+  ASSERT_EQ(r.status, mrepair::Status::ok) << r.message;
+  expect_valid(m);
+  EXPECT_EQ(r.feature_edges, 12u);
+  EXPECT_EQ(r.corners, 8u);
+  EXPECT_GT(face_count(m), 300u);  // 6 faces of area 1 at L = 0.1: ~460 faces
+  std::map<typename boost::graph_traits<Mesh>::vertex_descriptor, int> sharp;
+  double sharp_length = 0;
+  for (auto e : edges(m)) {
+    auto h = halfedge(e, m);
+    if (dihedral_cos(m, h) > 0.5) continue;  // sharp: normals more than 60 deg apart
+    ++sharp[source(h, m)];
+    ++sharp[target(h, m)];
+    Point a = pt(m, source(h, m)), b = pt(m, target(h, m));
+    sharp_length += std::sqrt(CGAL::squared_distance(a, b));
+    // on a cube edge: at least two coordinates of both ends in {0, 1}
+    int on = 0;
+    for (int i = 0; i < 3; ++i)
+      on += (a[i] == 0 || a[i] == 1) && a[i] == b[i];
+    EXPECT_GE(on, 2);
+  }
+  int corners = 0, inner = 0;
+  for (auto& kv : sharp) {
+    if (kv.second == 3) {
+      ++corners;
+      Point p = pt(m, kv.first);
+      for (int i = 0; i < 3; ++i) EXPECT_TRUE(p[i] == 0 || p[i] == 1);
+    } else {
+      EXPECT_EQ(kv.second, 2);
+      ++inner;
+    }
+  }
+  EXPECT_EQ(corners, 8);
+  EXPECT_NEAR(sharp_length, 12.0, 1e-9);
+  // 8 corners x 3 = 24 line ends = 12 polylines; every polyline got split
+  EXPECT_GE(inner, 12 * 5);
+  for (auto v : vertices(m)) {  // still on the cube surface
+    Point p = pt(m, v);
+    bool on_face = false;
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_GE(p[i], -1e-12);
+      EXPECT_LE(p[i], 1 + 1e-12);
+      on_face = on_face || std::abs(p[i]) < 1e-9 || std::abs(p[i] - 1) < 1e-9;
+    }
+    EXPECT_TRUE(on_face);
+  }
+}
+
+// A 1x1 plane with its boundary keeps its square outline.
+TYPED_TEST(Remesh, plane_keeps_outline)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh m = to_mesh<Mesh>(grid(10, 10, 0.1));
+  auto r = mrepair::isotropic_remesh(m, 0.045);
+  ASSERT_EQ(r.status, mrepair::Status::ok) << r.message;
+  expect_valid(m);
+  EXPECT_EQ(r.corners, 4u);
+  std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor> border;
+  CGAL::Polygon_mesh_processing::extract_boundary_cycles(m, std::back_inserter(border));
+  EXPECT_EQ(border.size(), 1u);
+  double outline = 0;
+  int square_corners = 0;
+  for (auto h : halfedges(m)) {
+    if (!is_border(h, m)) continue;
+    Point a = pt(m, source(h, m)), b = pt(m, target(h, m));
+    outline += std::sqrt(CGAL::squared_distance(a, b));
+    EXPECT_TRUE((a.x() == b.x() && (a.x() == 0 || a.x() == 1)) ||
+                (a.y() == b.y() && (a.y() == 0 || a.y() == 1)));
+    if ((a.x() == 0 || a.x() == 1) && (a.y() == 0 || a.y() == 1)) ++square_corners;
+  }
+  EXPECT_NEAR(outline, 4.0, 1e-9);
+  EXPECT_EQ(square_corners, 4);
+  for (auto v : vertices(m)) EXPECT_EQ(pt(m, v).z(), 0.0);
+  EXPECT_GT(face_count(m), 200u * 2);  // 200 input faces, L halved-ish
+}
+
+// A sphere reaches the requested edge length within 10% on average.
+TYPED_TEST(Remesh, sphere_reaches_target_length)
+{
+  using Mesh = typename TypeParam::Mesh;
+  for (double L : {0.05, 0.12, 0.3}) {
+    Mesh m = to_mesh<Mesh>(icosphere(3));
+    auto r = mrepair::isotropic_remesh(m, L);
+    ASSERT_EQ(r.status, mrepair::Status::ok);
+    expect_valid(m);
+    EXPECT_NEAR(mean_edge_length(m), L, 0.1 * L) << "L = " << L;
+    EXPECT_EQ(r.feature_edges, 0u);
+    for (auto v : vertices(m))
+      EXPECT_NEAR(std::sqrt((pt(m, v) - CGAL::ORIGIN).squared_length()), 1.0, 0.02);
+  }
+}
+
+// Remeshing a part leaves the rest bit-identical (same faces, same coordinates).
+TYPED_TEST(Remesh, part_leaves_rest_identical)
+{
+  using Mesh = typename TypeParam::Mesh;
+  using face_descriptor = typename boost::graph_traits<Mesh>::face_descriptor;
+  Mesh m = to_mesh<Mesh>(icosphere(3));
+  using Tri = std::array<std::array<double, 3>, 3>;
+  auto key = [&](face_descriptor f) {
+    Tri t;
+    int k = 0;
+    for (auto v : vertices_around_face(halfedge(f, m), m)) {
+      Point p = pt(m, v);
+      t[k++] = {p.x(), p.y(), p.z()};
+    }
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());  // keep orientation
+    return t;
+  };
+  std::vector<face_descriptor> part;
+  std::multiset<Tri> rest;
+  for (face_descriptor f : faces(m)) {
+    Point c = pt(m, target(halfedge(f, m), m));
+    if (c.z() > 0.3)
+      part.push_back(f);
+    else
+      rest.insert(key(f));
+  }
+  const std::size_t part_before = part.size();
+  auto r = mrepair::isotropic_remesh(part, m, 0.05);
+  ASSERT_EQ(r.status, mrepair::Status::ok) << r.message;
+  expect_valid(m);
+  std::multiset<Tri> after;
+  for (face_descriptor f : faces(m)) after.insert(key(f));
+  for (const Tri& t : rest) EXPECT_EQ(after.count(t), rest.count(t));
+  EXPECT_GT(face_count(m) - rest.size(), 2 * part_before);  // the part got finer
+  for (auto v : vertices(m))
+    EXPECT_NEAR(std::sqrt((pt(m, v) - CGAL::ORIGIN).squared_length()), 1.0, 0.02);
+}
+
+// Adaptive: fewer faces than uniform for the same error on a shape of varying curvature.
+TYPED_TEST(Remesh, adaptive_beats_uniform_on_ellipsoid)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = icosphere(5);
+  for (Point& p : s.points) p = Point(3 * p.x(), p.y(), 0.5 * p.z());
+  const Mesh input = to_mesh<Mesh>(s);
+  Mesh a = input;
+  auto ra = mrepair::adaptive_remesh(a, 0.002);
+  ASSERT_EQ(ra.status, mrepair::Status::ok) << ra.message;
+  expect_valid(a);
+  EXPECT_LT(ra.min_target, ra.max_target);
+  const double ha = one_sided_distance(a, input);
+  Mesh u = input;
+  auto ru = mrepair::remesh_to_face_count(u, face_count(a));
+  ASSERT_EQ(ru.status, mrepair::Status::ok) << ru.message;
+  expect_valid(u);
+  EXPECT_NEAR(double(face_count(u)), double(face_count(a)), 0.1 * face_count(a));
+  const double hu = one_sided_distance(u, input);
+  EXPECT_LT(ha, hu) << "adaptive " << face_count(a) << " faces, " << ha << "; uniform "
+                    << face_count(u) << " faces, " << hu;
+}
+
+TYPED_TEST(Remesh, face_count_within_ten_percent)
+{
+  using Mesh = typename TypeParam::Mesh;
+  for (std::size_t n : {500u, 4000u}) {
+    Mesh m = to_mesh<Mesh>(icosphere(3));
+    auto r = mrepair::remesh_to_face_count(m, n);
+    ASSERT_EQ(r.status, mrepair::Status::ok);
+    expect_valid(m);
+    EXPECT_NEAR(double(face_count(m)), double(n), 0.1 * n);
+  }
+}
+
+// A user edge map marks features; protect_constraints keeps them unsplit.
+TYPED_TEST(Remesh, user_edge_map_and_protection)
+{
+  using Mesh = typename TypeParam::Mesh;
+  using edge_descriptor = typename boost::graph_traits<Mesh>::edge_descriptor;
+  Mesh m = to_mesh<Mesh>(cube(1.0));
+  auto ecm = get(CGAL::dynamic_edge_property_t<bool>(), m);
+  for (edge_descriptor e : edges(m)) put(ecm, e, dihedral_cos(m, halfedge(e, m)) < 0.5);
+  auto r = mrepair::isotropic_remesh(
+      m, 0.3, CGAL::parameters::edge_is_constrained_map(ecm).protect_constraints(true));
+  ASSERT_EQ(r.status, mrepair::Status::ok);
+  expect_valid(m);
+  EXPECT_EQ(r.feature_edges, 12u);
+  std::size_t marked = 0;
+  for (edge_descriptor e : edges(m)) marked += get(ecm, e);
+  EXPECT_EQ(marked, 12u);  // protected: not split
+  Mesh m2 = to_mesh<Mesh>(cube(1.0));
+  auto ecm2 = get(CGAL::dynamic_edge_property_t<bool>(), m2);
+  for (edge_descriptor e : edges(m2)) put(ecm2, e, dihedral_cos(m2, halfedge(e, m2)) < 0.5);
+  r = mrepair::isotropic_remesh(m2, 0.3, CGAL::parameters::edge_is_constrained_map(ecm2));
+  std::size_t marked2 = 0;
+  for (edge_descriptor e : edges(m2)) marked2 += get(ecm2, e);
+  EXPECT_EQ(marked2, 12u * 4);  // each unit edge split into 4 edges of 0.25 (< 4/3 * 0.3)
+}
+
+TYPED_TEST(Remesh, bad_input)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh empty;
+  EXPECT_EQ(mrepair::isotropic_remesh(empty, 0.1).status, mrepair::Status::empty_input);
+  EXPECT_EQ(mrepair::adaptive_remesh(empty, 0.1).status, mrepair::Status::empty_input);
+  Mesh m = to_mesh<Mesh>(icosphere(1));
+  EXPECT_EQ(mrepair::isotropic_remesh(m, -1.0).status, mrepair::Status::invalid_parameter);
+  EXPECT_EQ(mrepair::isotropic_remesh(m, std::nan("")).status,
+            mrepair::Status::invalid_parameter);
+  auto v = *vertices(m).first;
+  put(CGAL::get(CGAL::vertex_point, m), v,
+      Point(std::numeric_limits<double>::quiet_NaN(), 0, 0));
+  auto r = mrepair::isotropic_remesh(m, 0.1);
+  EXPECT_EQ(r.status, mrepair::Status::non_finite_input);
+  EXPECT_EQ(face_count(m), 80u);  // untouched
+  expect_valid(m);
+  Mesh q = to_mesh<Mesh>(grid(2, 2, 1.0, true));  // quads
+  EXPECT_EQ(mrepair::isotropic_remesh(q, 0.1).status, mrepair::Status::invalid_mesh);
+  EXPECT_EQ(face_count(q), 4u);
+}
+
+struct Stopper : mrepair::Default_visitor
+{
+  int phases = 0;
+  void start_phase(const char*) { ++phases; }
+  bool stop_requested() { return phases > 3; }
+};
+
+TYPED_TEST(Remesh, cancel_leaves_valid_mesh)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh m = to_mesh<Mesh>(icosphere(3));
+  Stopper s;
+  auto r = mrepair::isotropic_remesh(m, 0.05, CGAL::parameters::visitor(std::ref(s)));
+  EXPECT_EQ(r.status, mrepair::Status::cancelled);
+  expect_valid(m);
+}
+
+TYPED_TEST(Remesh, parallel_tag_and_real_mesh)
+{
+  using Mesh = typename TypeParam::Mesh;
+  std::ifstream in(std::string(MREPAIR_CGAL_DATA_DIR) + "/fandisk.off");
+  Mesh m;
+  if (!in || !CGAL::IO::read_OFF(in, m)) GTEST_SKIP() << "fandisk.off not available";
+  auto r = mrepair::isotropic_remesh<CGAL::Parallel_if_available_tag>(m, 0.01,
+                                                                     CGAL::parameters::number_of_iterations(3));
+  ASSERT_EQ(r.status, mrepair::Status::ok);
+  expect_valid(m);
+  EXPECT_GT(r.feature_edges, 100u);
+}
