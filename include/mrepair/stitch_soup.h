@@ -174,6 +174,26 @@ Soup_repair_result clean_polygon_soup(PointRange& points, PolygonRange& polygons
   return r;
 }
 
+namespace internal {
+// The stages shared by the in-place and the mesh-building entry points: load
+// (clean), then cut, orient and stitch unless cancelled. Returns false when
+// `r` already holds the final status.
+template <class PointRange, class PolygonRange, class VisitorHandle>
+bool load_and_repair_soup(Soup_repairer& w, const PointRange& points,
+                          const PolygonRange& polygons, VisitorHandle& vis, Soup_repair_result& r)
+{
+  {
+    Phase_scope<VisitorHandle> phase(vis, "clean");
+    if (!w.load(points, polygons)) return false;
+  }
+  if (vis.stop_requested() || !w.run_topology(vis)) {
+    r.status = Status::cancelled;
+    return false;
+  }
+  return true;
+}
+} // namespace internal
+
 /// \ingroup mrepair_soup
 /// turns a polygon soup into a consistently oriented manifold triangle soup, in
 /// place (see the file comment for the steps). The output soup is a valid
@@ -189,14 +209,7 @@ Soup_repair_result repair_polygon_soup_to_manifold(PointRange& points, PolygonRa
   if (!internal::read_soup_options(np, o, r)) return r;
   internal::Visitor_handle<NamedParameters> vis(np);
   internal::Soup_repairer w(r, o);
-  {
-    internal::Phase_scope<internal::Visitor_handle<NamedParameters>> phase(vis, "clean");
-    if (!w.load(points, polygons)) return r;
-  }
-  if (vis.stop_requested() || !w.run_topology(vis)) {
-    r.status = Status::cancelled;
-    return r;
-  }
+  if (!internal::load_and_repair_soup(w, points, polygons, vis, r)) return r;
   internal::finish_soup_status(r);
   internal::write_back_soup(w, points, polygons);
   return r;
@@ -246,14 +259,7 @@ Soup_repair_result polygon_soup_to_manifold_mesh(const PointRange& points, const
   if (!internal::read_soup_options(np, o, r)) return r;
   internal::Visitor_handle<NamedParameters> vis(np);
   internal::Soup_repairer w(r, o);
-  {
-    internal::Phase_scope<internal::Visitor_handle<NamedParameters>> phase(vis, "clean");
-    if (!w.load(points, polygons)) return r;
-  }
-  if (vis.stop_requested() || !w.run_topology(vis)) {
-    r.status = Status::cancelled;
-    return r;
-  }
+  if (!internal::load_and_repair_soup(w, points, polygons, vis, r)) return r;
   {
     internal::Phase_scope<internal::Visitor_handle<NamedParameters>> phase(vis, "build");
     auto vpm = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
