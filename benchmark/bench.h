@@ -46,6 +46,15 @@ inline std::vector<Task>& tasks()
   return all;
 }
 
+/// optional reference file given by `--reference FILE` (e.g. the clean base
+/// surface written by `mrepair-generate scan --clean-output`); empty if none.
+/// Tasks that can use one read it; the others ignore it.
+inline std::string& reference_path()
+{
+  static std::string path;
+  return path;
+}
+
 /// registers a task at static-initialisation time.
 struct Task_registrar
 {

@@ -9,10 +9,14 @@
 // Both sides report the RameshCleaner table computed by the same code
 // (mrepair::inspect) on the input and on the output: isolated vertices,
 // components (small ones), small holes, near-degenerate faces, spiked
-// vertices, self-intersecting pairs; plus the symmetric Hausdorff distance to
-// the input (sampled, PMP::approximate_Hausdorff_distance, each direction)
-// over the bbox diagonal. CGAL has no NaN handling: its variants get the faces around
-// non-finite vertices removed before the timer starts.
+// vertices, self-intersecting pairs; plus the Hausdorff distance to the input
+// (sampled, PMP::approximate_Hausdorff_distance, each direction) in percent of
+// the input's bbox diagonal. With `--reference BASE` (the clean base surface
+// from `mrepair-generate scan --clean-output`) also the distances to the
+// surface that was scanned, each direction and symmetric, in percent of its
+// diagonal: unlike the input, it has no spike tips or islands whose deletion
+// counts as an error. CGAL has no NaN handling: its variants get the faces
+// around non-finite vertices removed before the timer starts.
 #include "bench.h"
 
 #include <mrepair/clean_scan_mesh.h>
@@ -86,20 +90,42 @@ void table(const Mesh& m, mrepair::Report& r)
   r.add("valid", CGAL::is_valid_polygon_mesh(m));
 }
 
-// Sampled one-sided Hausdorff distance from `from` to `to`, over the bbox
-// diagonal of `to`. Output to input measures what the cleaning invented or
-// moved (fills, relaxation); input to output also counts what it deleted on
-// purpose (spike tips, islands), so both are reported.
-double hausdorff_over_diagonal(const Mesh& from, const Mesh& to)
+double diagonal(const Mesh& m)
 {
-  if (faces(from).size() == 0 || faces(to).size() == 0) return std::nan("");
-  auto box = CGAL::bbox_3(to.points().begin(), to.points().end());
-  double diag = std::sqrt(CGAL::square(box.xmax() - box.xmin()) +
-                          CGAL::square(box.ymax() - box.ymin()) +
-                          CGAL::square(box.zmax() - box.zmin()));
-  return PMP::approximate_Hausdorff_distance<CGAL::Parallel_if_available_tag>(
+  auto box = CGAL::bbox_3(m.points().begin(), m.points().end());
+  return std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                   CGAL::square(box.zmax() - box.zmin()));
+}
+
+// Sampled one-sided Hausdorff distance from `from` to `to` in percent of
+// `diag`. The samples include every vertex of `from` (where spike tips and
+// fill patches peak) plus 200k random points on its faces and edges. Output to
+// input measures what the cleaning invented or moved (fills, relaxation);
+// input to output also counts what it deleted on purpose (spike tips,
+// islands), so both are reported.
+double hausdorff_percent(const Mesh& from, const Mesh& to, double diag)
+{
+  if (faces(from).size() == 0 || faces(to).size() == 0 || !(diag > 0)) return std::nan("");
+  return 100.0 *
+         PMP::approximate_Hausdorff_distance<CGAL::Parallel_if_available_tag>(
              from, to, CGAL::parameters::number_of_points_on_faces(200000)) /
          diag;
+}
+
+// Distances of the output to the input and, when given, to the clean base surface.
+void distances(const Mesh& out, const Mesh& input, mrepair::Report& r)
+{
+  const double d_in = diagonal(input);
+  r.add("hausdorff_output_to_input_pct", hausdorff_percent(out, input, d_in));
+  r.add("hausdorff_input_to_output_pct", hausdorff_percent(input, out, d_in));
+  const std::string& ref = mrepair::bench::reference_path();
+  if (ref.empty()) return;
+  const Mesh base = load(ref);
+  const double d_base = diagonal(base);
+  const double ob = hausdorff_percent(out, base, d_base), bo = hausdorff_percent(base, out, d_base);
+  r.add("hausdorff_output_to_base_pct", ob);
+  r.add("hausdorff_base_to_output_pct", bo);
+  r.add("hausdorff_symmetric_base_pct", std::max(ob, bo));
 }
 
 // Input with the faces around non-finite vertices removed (CGAL cannot).
@@ -133,8 +159,7 @@ mrepair::bench::Measurement run_mrepair(const std::string& path)
   out.result.add("write_status", w.status);
   out.status = mrepair::to_string(r.status);
   table(m, out.after);
-  out.after.add("hausdorff_output_to_input", hausdorff_over_diagonal(m, reference));
-  out.after.add("hausdorff_input_to_output", hausdorff_over_diagonal(reference, m));
+  distances(m, reference, out.after);
   return out;
 }
 
@@ -202,8 +227,7 @@ mrepair::bench::Measurement run_cgal(const std::string& path, bool experimental)
   }
   m.collect_garbage();
   table(m, out.after);
-  out.after.add("hausdorff_output_to_input", hausdorff_over_diagonal(m, reference));
-  out.after.add("hausdorff_input_to_output", hausdorff_over_diagonal(reference, m));
+  distances(m, reference, out.after);
   return out;
 }
 

@@ -1,5 +1,5 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
-// mrepair-bench TASK INPUT [--csv] [--only NAME]: runs every variant of TASK on
+// mrepair-bench TASK INPUT [--csv] [--only NAME] [--reference FILE]: runs every variant of TASK on
 // INPUT, each in its own forked process (fresh heap, own peak RSS), and
 // prints time, ratio to the mrepair variant, peak memory and the reports side
 // by side.
@@ -114,7 +114,7 @@ Outcome run_variant(const Variant& v, const std::string& input)
 
 void usage()
 {
-  std::cout << "usage: mrepair-bench TASK INPUT [--csv] [--only NAME]\n\ntasks:\n";
+  std::cout << "usage: mrepair-bench TASK INPUT [--csv] [--only NAME] [--reference FILE]\n\ntasks:\n";
   for (const Task& t : mrepair::bench::tasks()) {
     std::cout << "  " << t.name << ": " << t.summary << "\n    variants:";
     for (const Variant& v : t.variants) std::cout << " [" << v.name << "]";
@@ -145,6 +145,8 @@ int main(int argc, char** argv)
       csv = true;
     else if (a == "--only" && i + 1 < argc)
       only = argv[++i];
+    else if (a == "--reference" && i + 1 < argc)
+      mrepair::bench::reference_path() = argv[++i];
     else {
       std::cerr << "mrepair-bench: unknown option " << a << "\n";
       return 2;

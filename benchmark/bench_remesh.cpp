@@ -24,6 +24,7 @@
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Real_timer.h>
 #include <CGAL/Surface_mesh.h>
@@ -126,6 +127,12 @@ void quality(const Mesh& out, const Mesh& in, mrepair::Report& r)
   r.add("hausdorff", std::max(h1, h2));
   r.add("hausdorff_rel_bbox", std::max(h1, h2) / bbox_diagonal(in));
   r.add("valid", CGAL::is_valid_polygon_mesh(out));
+  // the input's count too: the remesher owes none only where the input had none
+  std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> si_in, si_out;
+  PMP::self_intersections<CGAL::Parallel_if_available_tag>(faces(in), in, std::back_inserter(si_in));
+  PMP::self_intersections<CGAL::Parallel_if_available_tag>(faces(out), out, std::back_inserter(si_out));
+  r.add("self_intersections_input", si_in.size());
+  r.add("self_intersections", si_out.size());
 }
 
 template <typename Tag>

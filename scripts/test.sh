@@ -1,9 +1,17 @@
 #!/usr/bin/env bash
 # Builds everything (library checks, tools, examples, benchmarks) and runs the
-# whole test suite. This is the README's test command; .ci/run calls it.
+# whole test suite, then builds the tests again with AddressSanitizer and
+# UndefinedBehaviorSanitizer and runs them (the programs the tests call are
+# the release ones built first). This is the README's test command; .ci/run
+# calls it. MREPAIR_SKIP_ASAN=1 runs the release suite only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 cmake --preset release
 cmake --build --preset release
 ctest --preset release
+if [ "${MREPAIR_SKIP_ASAN:-0}" != 1 ]; then
+  cmake --preset asan
+  cmake --build --preset asan
+  ctest --preset asan
+fi

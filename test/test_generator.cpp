@@ -154,6 +154,42 @@ TEST(Generator, ScanIsDeterministicPerSeed)
   EXPECT_NE(slurp(d / "a.json"), slurp(d / "c.json"));
 }
 
+// --clean-output writes the base surface (upsampled, before noise and
+// defects), the reference for distance measurements, and changes nothing else.
+TEST(Generator, ScanCleanOutputIsTheBaseSurface)
+{
+  REQUIRE_GENERATOR();
+  Temp_dir d;
+  const std::string common = "scan --faces 3000 --seed 7 --nan-referenced 1 --noise 0.2 ";
+  ASSERT_EQ(0, run_generator(common + "--output " + d / "a.ply" + " --manifest " + d / "a.json"));
+  ASSERT_EQ(0, run_generator(common + "--output " + d / "b.ply" + " --manifest " + d / "b.json" +
+                             " --clean-output " + d / "base.off"));
+  EXPECT_EQ(slurp(d / "a.ply"), slurp(d / "b.ply"));
+  const std::string a = slurp(d / "a.json"), b = slurp(d / "b.json");
+  EXPECT_EQ(a.find("clean_output"), std::string::npos);
+  const std::string line = ",\n    \"clean_output\": \"base.off\"";
+  const std::size_t at = b.find(line);
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_EQ(b.substr(0, at) + b.substr(at + line.size()), a);  // nothing else differs
+
+  Loaded base = load(d / "base.off");
+  ASSERT_EQ(base.io.status, mrepair::Status::ok) << base.io.message;
+  EXPECT_EQ(base.points.size(), manifest_count(a, "base", "upsampled_vertices"));
+  EXPECT_EQ(base.polygons.size(), manifest_count(a, "base", "upsampled_faces"));
+  // the procedural bumpy sphere: closed, one component, no defect
+  mrepair::Inspection_report r = mrepair::inspect_polygon_soup(base.points, base.polygons);
+  EXPECT_TRUE(r.closed);
+  EXPECT_EQ(r.connected_components, 1u);
+  EXPECT_EQ(r.non_finite_vertices, 0u);
+  EXPECT_EQ(r.isolated_vertices, 0u);
+  EXPECT_EQ(r.non_manifold_edges, 0u);
+  EXPECT_EQ(r.self_intersecting_pairs, 0u);
+  EXPECT_EQ(r.spiked_vertices, 0u);
+  EXPECT_EQ(r.near_degenerate_faces, 0u);
+  EXPECT_EQ(run_generator("cad --faces 3000 --output " + d / "c.ply" + " --clean-output " + d / "x.ply"),
+            2);  // scan only
+}
+
 TEST(Generator, CadIsDeterministicPerSeed)
 {
   REQUIRE_GENERATOR();

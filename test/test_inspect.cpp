@@ -2,6 +2,7 @@
 // Inspection: hand-built soups and meshes with hand-counted defects, on the
 // soup path and on both mesh types; a CGAL cross-check on a real mesh.
 #include <mrepair/inspect.h>
+#include <mrepair/relax_spikes.h>
 
 #include "fixtures.h"
 
@@ -347,15 +348,30 @@ TYPED_TEST(Inspect, spike_raised_five_edge_lengths)
   s.points[apex] = Point(3, 3, 5);
   // dihedral angles of this tall spike (the grid's diagonals make them uneven):
   // 87.80 deg on 2 edges, 81.95 on 2, 78.69 on 4, 44.44 on 4 (hand computed)
+  // Height criterion (as relax_spikes): the apex is 5 above the plane of its
+  // link, whose 6 edges have mean length (4 + 2 sqrt 2) / 6 = 1.138; 5 / 1.138
+  // = 4.39 > 2. The 6 ring vertices (every dihedral > 15 deg) stay far below:
+  // 0.394 / 2.452 = 0.16 (4 of them) and 0.539 / 2.504 = 0.22 (2).
   Mesh m = to_mesh<Mesh>(s);
   Inspection_report r = mrepair::inspect(m);
   EXPECT_NEAR(r.max_dihedral_angle, 87.80, 0.01);
-  EXPECT_EQ(r.spiked_vertices, 0u); // below the default 100 deg: tall spikes need a lower threshold
+  EXPECT_EQ(r.spiked_vertices, 1u);  // the apex, by height only (every dihedral < 100 deg)
+  EXPECT_EQ(mrepair::inspect(m, MP::spike_height_factor(0.0)).spiked_vertices, 0u);
+  EXPECT_EQ(mrepair::inspect(m, MP::spike_height_factor(4.5)).spiked_vertices, 0u);
+  EXPECT_EQ(mrepair::inspect(m, MP::spike_height_factor(4.3)).spiked_vertices, 1u);
   EXPECT_EQ(mrepair::inspect(m, MP::spike_angle(85.0)).spiked_vertices, 3u);  // apex + 2
   EXPECT_EQ(mrepair::inspect(m, MP::spike_angle(80.0)).spiked_vertices, 7u);  // apex + 6 ring
   EXPECT_EQ(mrepair::inspect(m, MP::spike_angle(40.0)).spiked_vertices, 7u);
-  EXPECT_EQ(mrepair::inspect(m, MP::spike_angle(88.0)).spiked_vertices, 0u);
+  EXPECT_EQ(mrepair::inspect(m, MP::spike_angle(88.0)).spiked_vertices, 1u);  // apex by height
+  EXPECT_EQ(mrepair::inspect(m, MP::spike_angle(88.0, MP::spike_height_factor(0.0))).spiked_vertices, 0u);
   EXPECT_EQ(mrepair::inspect_polygon_soup(s.points, s.polygons, MP::spike_angle(80.0)).spiked_vertices, 7u);
+  EXPECT_EQ(mrepair::inspect_polygon_soup(s.points, s.polygons).spiked_vertices, 1u);
+  // The same definition as relax_spikes(): it finds the same single vertex.
+  Mesh relaxed = m;
+  const mrepair::Spike_relaxation_result sr = mrepair::relax_spikes(relaxed);
+  EXPECT_EQ(sr.spiked_vertices_before, 1u);
+  EXPECT_EQ(sr.spiked_by_height_before, 1u);
+  EXPECT_EQ(mrepair::inspect(relaxed).spiked_vertices, sr.spiked_vertices_after);
   EXPECT_EQ(r.self_intersecting_pairs, 0u);
 }
 

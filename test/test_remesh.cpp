@@ -8,6 +8,7 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/boost/graph/IO/OFF.h>
 #include <CGAL/boost/graph/graph_concepts.h>
 
@@ -339,4 +340,70 @@ TYPED_TEST(Remesh, parallel_tag_and_real_mesh)
   ASSERT_EQ(r.status, mrepair::Status::ok);
   expect_valid(m);
   EXPECT_GT(r.feature_edges, 100u);
+}
+
+template <class Mesh>
+double min_angle_deg(const Mesh& m)
+{
+  double best = 180;
+  for (auto f : faces(m)) {
+    auto h = halfedge(f, m);
+    Point p[3] = {pt(m, source(h, m)), pt(m, target(h, m)), pt(m, target(next(h, m), m))};
+    for (int i = 0; i < 3; ++i) {
+      K::Vector_3 u = p[(i + 1) % 3] - p[i], v = p[(i + 2) % 3] - p[i];
+      double c = u * v / std::sqrt(u.squared_length() * v.squared_length());
+      best = std::min(best, std::acos(std::max(-1., std::min(1., c))) * 180. / CGAL_PI);
+    }
+  }
+  return best;
+}
+
+// fandisk has no self-intersection, narrow strips between feature lines and
+// a 19.4 degree wedge between two lines at a corner: remeshing, coarse or
+// fine, uniform or adaptive, must not fold a face through another, and the
+// final min-angle pass keeps the smallest angle above CGAL 5.5's 18.5 degrees
+// (mean input length 0.0207, 3 iterations).
+TYPED_TEST(Remesh, fandisk_no_self_intersections_and_min_angle)
+{
+  using Mesh = typename TypeParam::Mesh;
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  std::ifstream in(std::string(MREPAIR_CGAL_DATA_DIR) + "/fandisk.off");
+  Mesh input;
+  if (!in || !CGAL::IO::read_OFF(in, input)) GTEST_SKIP() << "fandisk.off not available";
+  ASSERT_FALSE(PMP::does_self_intersect(input));
+  for (double L : {0.0207, 0.05, 0.1}) {
+    Mesh m = input;
+    auto r = mrepair::isotropic_remesh(m, L, CGAL::parameters::number_of_iterations(3));
+    ASSERT_EQ(r.status, mrepair::Status::ok) << r.message;
+    expect_valid(m);
+    EXPECT_GT(r.feature_edges, 100u);
+    EXPECT_FALSE(PMP::does_self_intersect(m)) << "L = " << L;
+    if (L < 0.03) {
+      EXPECT_GT(min_angle_deg(m), 18.5);
+    }
+  }
+  Mesh a = input;
+  auto ra = mrepair::adaptive_remesh(a, 0.002);
+  ASSERT_EQ(ra.status, mrepair::Status::ok) << ra.message;
+  expect_valid(a);
+  EXPECT_FALSE(PMP::does_self_intersect(a));
+}
+
+// Coarsening armadillo (L = 1.5 x its mean edge length, 10 iterations) folded
+// faces through their neighbours at thin parts (7 intersecting pairs) before
+// collapses and flips refused to create folds. Surface_mesh only: the
+// Polyhedron_3 run adds ~15 s and exercises no other code.
+TEST(Remesh_armadillo, coarse_remeshing_keeps_no_self_intersections)
+{
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  std::ifstream in(std::string(MREPAIR_CGAL_DATA_DIR) + "/armadillo.off");
+  Surface_mesh m;
+  if (!in || !CGAL::IO::read_OFF(in, m)) GTEST_SKIP() << "armadillo.off not available";
+  ASSERT_FALSE(PMP::does_self_intersect<CGAL::Parallel_if_available_tag>(m));
+  const double L = 1.5 * mean_edge_length(m);
+  auto r = mrepair::isotropic_remesh(m, L, CGAL::parameters::number_of_iterations(10));
+  ASSERT_EQ(r.status, mrepair::Status::ok) << r.message;
+  expect_valid(m);
+  EXPECT_LT(face_count(m), 30000u);  // 52000 input faces, coarsened
+  EXPECT_FALSE(PMP::does_self_intersect<CGAL::Parallel_if_available_tag>(m));
 }

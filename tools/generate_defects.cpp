@@ -2,7 +2,8 @@
 // mrepair-generate: seeded, deterministic generator of defective meshes for
 // tests and benchmarks, with a JSON manifest of everything it injected.
 //
-//   mrepair-generate scan --faces N --seed S --output OUT.ply [--input CLEAN.off] [--manifest M.json] ...
+//   mrepair-generate scan --faces N --seed S --output OUT.ply [--input CLEAN.off] [--manifest M.json]
+//                         [--clean-output BASE.ply] ...
 //   mrepair-generate cad  --faces N --seed S --output OUT.stl|off|ply [--manifest M.json] [--gap G] ...
 //
 // Identical arguments give byte-identical files on any machine (own uniform
@@ -39,7 +40,7 @@ const char* kUsage =
     "usage: mrepair-generate scan --output OUT [--faces N] [--seed S] [--input CLEAN] [--manifest M.json]\n"
     "         [--spikes K] [--foldovers K] [--tunnels K] [--holes K] [--jagged-holes K] [--islands K]\n"
     "         [--slivers K] [--isolated K] [--nan K] [--nan-referenced K] [--pinned-danglers K]\n"
-    "         [--noise A] [--ascii]\n"
+    "         [--noise A] [--clean-output BASE] [--ascii]\n"
     "       mrepair-generate cad --output OUT [--faces N] [--seed S] [--manifest M.json] [--gap G]\n"
     "         [--gap-fraction F] [--flipped K] [--duplicates K] [--degenerate K] [--fins K] [--pinched K]\n"
     "         [--ascii]\n"
@@ -49,6 +50,8 @@ const char* kUsage =
     "      vertices, --nan-referenced turns surface vertices into NaN. --pinned-danglers adds faces\n"
     "      hanging by one vertex in jagged holes (non-manifold vertices; default 0). --noise moves\n"
     "      vertices along the normal by up to A mean edge lengths before the defects (default 0).\n"
+    "      --clean-output also writes the clean base surface (upsampled, before noise and defects),\n"
+    "      the reference for distance measurements; the other outputs do not change.\n"
     "cad:  a box and a silo as 9 independently tessellated patches; --gap G: seam vertices perturbed\n"
     "      by up to G x bbox diagonal (default 1e-4), gap seams pulled apart by 1-3 G;\n"
     "      --gap-fraction: share of seams with a gap (default 0.3).\n"
@@ -127,6 +130,10 @@ int run_scan(const mrepair::cli::Arguments& a)
     base_faces = s.faces.size();
   }
   const std::size_t upsampled_faces = s.faces.size(), upsampled_vertices = s.points.size();
+  // The reference surface: written before the injector touches `s` (it draws
+  // no random numbers here, so the defective output stays byte-identical).
+  const std::string clean_out = a.get("clean-output");
+  if (!clean_out.empty()) write_soup(clean_out, s, !a.has("ascii"));
 
   const double k = static_cast<double>(s.faces.size());
   Scan_options o;
@@ -175,6 +182,7 @@ int run_scan(const mrepair::cli::Arguments& a)
   j.value("boundary_edges", inj.base_boundary_edges()).value("components", inj.base_components());
   j.value("boundary_loops", static_cast<long long>(inj.base_boundary_loops()));
   j.value("noise_over_mean_edge", o.noise);
+  if (!clean_out.empty()) j.value("clean_output", base_name(clean_out));
   j.end_object();
   j.begin_object("output").value("vertices", s.points.size()).value("faces", s.faces.size()).end_object();
   j.begin_object("requested");
@@ -321,7 +329,7 @@ int main(int argc, char** argv)
         {"spikes", true, ""}, {"foldovers", true, ""}, {"tunnels", true, ""}, {"holes", true, ""},
         {"jagged-holes", true, ""}, {"islands", true, ""}, {"slivers", true, ""},
         {"isolated", true, ""}, {"nan", true, ""}, {"nan-referenced", true, ""},
-        {"pinned-danglers", true, ""}, {"noise", true, ""},
+        {"pinned-danglers", true, ""}, {"noise", true, ""}, {"clean-output", true, ""},
         {"gap", true, ""}, {"gap-fraction", true, ""}, {"flipped", true, ""}, {"duplicates", true, ""},
         {"degenerate", true, ""}, {"fins", true, ""}, {"pinched", true, ""}};
     mrepair::cli::Arguments a = mrepair::cli::parse(argc, argv, 1, options, 1, 1);
@@ -332,7 +340,7 @@ int main(int argc, char** argv)
     const std::string mode = a.positional[0];
     static const char* scan_only[] = {"input", "spikes", "foldovers", "tunnels", "holes", "jagged-holes",
                                       "islands", "slivers", "isolated", "nan", "nan-referenced",
-                                      "pinned-danglers", "noise"};
+                                      "pinned-danglers", "noise", "clean-output"};
     static const char* cad_only[] = {"gap", "gap-fraction", "flipped", "duplicates", "degenerate",
                                      "fins", "pinched"};
     if (mode == "scan") {

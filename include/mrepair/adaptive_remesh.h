@@ -162,6 +162,9 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
   const double diag = std::sqrt(CGAL::square(bb.xmax() - bb.xmin()) +
                                 CGAL::square(bb.ymax() - bb.ymin()) +
                                 CGAL::square(bb.zmax() - bb.zmin()));
+  // products of up to three coordinate differences must stay finite (NaN positions otherwise)
+  if (!(diag <= 1e100))
+    return fail(Status::non_finite_input, "coordinates too large: bounding-box diagonal above 1e100");
 
   // ---- part selection
   auto in_part_map = get(CGAL::dynamic_face_property_t<char>(), tm);
@@ -242,6 +245,13 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
       const double N = value;
       res.target_faces = static_cast<std::size_t>(N);
       double L = std::sqrt(4. * area / (std::sqrt(3.) * N));
+      // a few very long, thin triangles have little area but would be split
+      // into edge length / L pieces (out of memory): keep the splits to ~100 N
+      double perimeters = 0;
+      for (const auto& t : rf.triangles)
+        for (int k = 0; k < 3; ++k)
+          perimeters += remesh::len(rf.points[t[(k + 1) % 3]] - rf.points[t[k]]);
+      L = std::max(L, perimeters / (200. * N));
       const std::size_t outside = whole ? 0 : res.faces_before - rf.triangles.size();
       R.set_uniform(L);
       st = R.run(std::max(iterations, 1), project, vis);
@@ -292,10 +302,12 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
 ///   - `relax_constraints` (bool, true: feature/boundary vertices slide along their line)
 ///   - `do_project` (bool, true: back-projection onto the input surface)
 ///   - `mrepair::parameters::remesh_density_factor` (double, 1: target lengths divided by it)
-///   - `visitor` (`mrepair::Default_visitor`; phases "setup", "split", "collapse", "flip", "relax")
+///   - `visitor` (`mrepair::Default_visitor`; phases "setup", "split", "collapse", "flip", "relax",
+///     "cleanup")
 /// \pre `CGAL::is_valid_polygon_mesh(tm)`
 /// \return `Remeshing_result`; `tm` untouched when `status` reports bad input
-///         (`empty_input`, `invalid_mesh`, `non_finite_input`, `invalid_parameter`).
+///         (`empty_input`, `invalid_mesh`, `non_finite_input`, `invalid_parameter`);
+///         `non_finite_input` also when the bounding-box diagonal exceeds 1e100.
 ///         On `Surface_mesh`, garbage is collected.
 template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh,
           typename CGAL_NP_TEMPLATE_PARAMETERS>

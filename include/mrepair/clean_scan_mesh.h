@@ -98,9 +98,9 @@ struct Scan_cleaning_result
   std::size_t iterations = 0;
   bool converged = false;  ///< the last iteration changed nothing (else the cap was hit)
   std::size_t vertices_before = 0, faces_before = 0, vertices_after = 0, faces_after = 0;
-  std::size_t non_finite_vertices_removed = 0;
-  std::size_t isolated_vertices_removed = 0;
-  std::size_t faces_removed_with_non_finite = 0;
+  std::size_t non_finite_vertices_removed = 0;   ///< vertices with a NaN/infinite coordinate
+  std::size_t isolated_vertices_removed = 0;     ///< finite vertices without a face (also those the removal of non-finite faces left without one)
+  std::size_t faces_removed_with_non_finite = 0; ///< faces of non-finite vertices (and fans removed to avoid pinched vertices)
   std::array<Clean_step_stats, number_of_clean_steps> steps;
   Small_components_result components;   ///< totals over iterations
   Boundary_cleaning_result boundaries;  ///< totals over iterations
@@ -344,7 +344,14 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
         const std::size_t nv = static_cast<std::size_t>(vertices(pmesh).size());
         r.faces_removed_with_non_finite =
             SC::remove_faces_without_pinches(pmesh, doomed, fmark, extra);
-        r.non_finite_vertices_removed = nv - static_cast<std::size_t>(vertices(pmesh).size());
+        // the removal also drops finite vertices left without faces: those
+        // count as isolated, not as non-finite
+        std::size_t non_finite_left = 0;
+        for (vertex_descriptor v : vertices(pmesh))
+          if (!SC::is_finite_point(vpm, v)) ++non_finite_left;
+        const std::size_t gone = nv - static_cast<std::size_t>(vertices(pmesh).size());
+        r.non_finite_vertices_removed = bad.size() - non_finite_left;
+        r.isolated_vertices_removed = gone - r.non_finite_vertices_removed;
       }
       std::vector<vertex_descriptor> isolated;
       for (vertex_descriptor v : vertices(pmesh))

@@ -40,7 +40,8 @@ namespace mrepair {
 ///   most `tolerance`.
 /// \param np optional named parameters:
 ///   - `vertex_point_map` (default `get(CGAL::vertex_point, tm)`)
-///   - `visitor` (`Default_visitor`): phases "pairing", "closing", "manifold"; progress; stop
+///   - `visitor` (`Default_visitor`): phases "pairing", "closing", "manifold"; progress;
+///     stop polled before the first contraction and every 256 contractions
 ///   - `mrepair::parameters::gap_relative_tolerance(bool)` (false)
 ///   - `gap_lambda(double)` in [0,1] (0.5): a contracted vertex moves to λv + (1-λ)v'
 ///   - `gap_snap_distance(double)` (`tolerance`): a projection closer than
@@ -52,7 +53,8 @@ namespace mrepair {
 ///     fans at the end, so that the output is manifold
 /// \pre `CGAL::is_valid_polygon_mesh(tm)` (checked in debug builds only)
 /// \return `Gap_closing_result`; `tm` untouched when `status` reports bad input
-///   (`empty_input`, `non_finite_input`, `invalid_mesh`, `invalid_parameter`);
+///   (`empty_input`, `non_finite_input`, `invalid_mesh`, `invalid_parameter`;
+///   `non_finite_input` also when the bounding-box diagonal exceeds 1e100);
 ///   `cancelled` when the visitor stopped it (the mesh is valid).
 template <typename TriangleMesh,
           typename NamedParameters = CGAL::parameters::Default_named_parameters>
@@ -76,7 +78,9 @@ Gap_closing_result close_gaps(TriangleMesh& tm, double tolerance,
     internal::Phase_scope<decltype(visitor)> phase(visitor, "closing");
     const double limit = seq->max_distance();
     std::size_t n = 0;
-    while (n < max_ops && seq->step(limit)) {
+    // polled before the first contraction too: small meshes never reach 256
+    cancelled = visitor.stop_requested();
+    while (!cancelled && n < max_ops && seq->step(limit)) {
       ++n;
       if ((n & 255) == 0) {
         if (visitor.stop_requested()) {

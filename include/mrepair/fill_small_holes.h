@@ -140,6 +140,24 @@ public:
 
   // Triangulates the loop of `h`, then refines and fairs the patch. Returns
   // false (mesh unchanged) when no valid triangulation exists.
+  bool loop_is_finite(halfedge_descriptor h) const
+  {
+    for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_))
+      if (!is_finite_point(vpm_, target(g, pm_))) return false;
+    return true;
+  }
+
+  bool two_rings_are_finite(const std::vector<vertex_descriptor>& vs) const
+  {
+    for (vertex_descriptor v : vs)
+      for (vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, pm_), pm_)) {
+        if (!is_finite_point(vpm_, w)) return false;
+        for (vertex_descriptor x : CGAL::vertices_around_target(halfedge(w, pm_), pm_))
+          if (!is_finite_point(vpm_, x)) return false;
+      }
+    return true;
+  }
+
   bool fill(halfedge_descriptor h, std::size_t n)
   {
     double lsum = 0.;
@@ -164,7 +182,9 @@ public:
     }
     std::vector<vertex_descriptor> added;
     if (refine_ && n > 3) refine(patch, density_ * lsum / double(n), added, loop);
-    if (fair_ && !added.empty())
+    // Fairing reads the 2-ring of the patch vertices with exact predicates,
+    // which fail on NaN: skip it next to a non-finite vertex.
+    if (fair_ && !added.empty() && two_rings_are_finite(added))
       CGAL::Polygon_mesh_processing::fair(pm_, added, CGAL::parameters::vertex_point_map(vpm_));
     result.faces_added += patch.size();
     result.vertices_added += added.size();
@@ -397,6 +417,10 @@ public:
       std::size_t n = loop_size(h);
       if (n >= max_vertices_) { ++result.holes_too_large; continue; }
       ++result.holes_found;
+      if (!loop_is_finite(h)) {  // no fill and no enlargement around bad data
+        result.open_holes.push_back({n, "non_finite"});
+        continue;
+      }
       if (fill(h, n)) ++result.holes_filled;
       else { ++result.aborted_fills; failed.push_back(h); }
       if ((++done & 63) == 0) visitor.progress(double(done) / double(loops.size()));
@@ -418,6 +442,10 @@ public:
         std::size_t n = loop_size(h);
         if (n >= max_vertices_) {
           result.open_holes.push_back({n, "grew_too_large"});
+          continue;
+        }
+        if (!loop_is_finite(h)) {
+          result.open_holes.push_back({n, "non_finite"});
           continue;
         }
         if (fill(h, n)) ++result.holes_filled;
@@ -447,6 +475,11 @@ public:
 ///   remove the 1-ring faces of the aborted loops (no pinched vertex left)
 ///   fill the loops this makes if they are still small, else leave them open
 /// \endcode
+/// A loop with a non-finite vertex is neither filled nor enlarged (listed in
+/// `open_holes` with reason "non_finite"). Existing vertices never move; patch
+/// vertices are edge midpoints and centroids of the patch, inside the bounding
+/// box of the mesh. Faces are removed only by enlargements, so always
+/// faces after = faces before - `enlargement_faces_removed` + `faces_added`.
 /// Holes at or above the limit are never filled: the paper only polishes
 /// large holes (`clean_boundaries()`) and leaves completion to other tools.
 ///

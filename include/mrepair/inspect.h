@@ -6,6 +6,7 @@
 #include <mrepair/internal/inspect/analysis.h>
 #include <mrepair/internal/inspect/mesh_arrays.h>
 #include <mrepair/internal/inspect/surface_arrays.h>
+#include <mrepair/internal/scan_clean/spike_criterion.h>
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
 #include <mrepair/status.h>
@@ -42,6 +43,8 @@ template <typename NamedParameters>
 bool read_inspect_thresholds(const NamedParameters& np, Inspect_thresholds& t, std::string& msg)
 {
   t.spike_angle = get_or<double>(np, internal_np::spike_angle, 100.0);
+  t.spike_height_factor =
+      get_or<double>(np, internal_np::spike_height_factor, default_spike_height_factor);
   t.zero_edge_factor = get_or<double>(np, internal_np::zero_edge_factor, 0.1);
   t.skinny_edge_factor = get_or<double>(np, internal_np::skinny_edge_factor, 0.25);
   t.skinny_angle = get_or<double>(np, internal_np::skinny_angle, 10.0);
@@ -54,6 +57,7 @@ bool read_inspect_thresholds(const NamedParameters& np, Inspect_thresholds& t, s
     return false;
   };
   if (!(t.spike_angle >= 0 && t.spike_angle <= 180)) return bad("spike_angle (degrees, 0..180)");
+  if (!std::isfinite(t.spike_height_factor)) return bad("spike_height_factor (finite)");
   if (!(t.zero_edge_factor >= 0) || !std::isfinite(t.zero_edge_factor)) return bad("zero_edge_factor");
   if (!(t.skinny_edge_factor >= 0) || !std::isfinite(t.skinny_edge_factor))
     return bad("skinny_edge_factor");
@@ -79,6 +83,7 @@ void count_self_intersections(const Surface_analysis& analysis, bool asked, Visi
 inline void copy_thresholds(const Inspect_thresholds& t, Inspection_report& r)
 {
   r.spike_angle = t.spike_angle;
+  r.spike_height_factor = t.spike_height_factor;
   r.zero_edge_factor = t.zero_edge_factor;
   r.skinny_edge_factor = t.skinny_edge_factor;
   r.skinny_angle = t.skinny_angle;
@@ -122,6 +127,8 @@ inline void finish_status(Inspection_report& r, std::size_t non_finite_reference
 /// \tparam PolygonRange range of ranges of (signed or unsigned) integer indices
 /// \param np optional, each as `mrepair::parameters::NAME(value)`:
 ///   - `spike_angle` (double, degrees, 100): dihedral angle above which an edge makes its ends spiked
+///   - `spike_height_factor` (double, 2; 0 disables): an interior vertex farther than this many
+///     mean link edge lengths from the plane of its link is spiked too (as in `relax_spikes()`)
 ///   - `zero_edge_factor` (double, 0.1): zero edge: length < factor x global mean edge length
 ///   - `skinny_edge_factor` (double, 0.25): skinny edge: length < factor x local mean edge length
 ///   - `skinny_angle` (double, degrees, 10): opposite angle below which a skinny edge counts

@@ -75,6 +75,7 @@ struct Inspection_report
 
   // ---- thresholds used (after defaults were resolved) -----------------------------
   double spike_angle = 0;
+  double spike_height_factor = 0;
   double zero_edge_factor = 0;
   double skinny_edge_factor = 0;
   double skinny_angle = 0;
@@ -142,6 +143,7 @@ struct Inspection_report
     q.add("volume", volume);
     Report& t = r.section("thresholds");
     t.add("spike_angle", spike_angle);
+    t.add("spike_height_factor", spike_height_factor);
     t.add("zero_edge_factor", zero_edge_factor);
     t.add("skinny_edge_factor", skinny_edge_factor);
     t.add("skinny_angle", skinny_angle);

@@ -40,7 +40,7 @@
 /// w(theta) = 0 for theta <= a, min(1, (theta - a)/(b - a)) above; w = 1 for criterion 2
 /// \endcode
 
-MREPAIR_ADD_NAMED_PARAMETER(spike_height_factor)  // second spike criterion (2; 0 disables)
+// spike_height_factor (2; 0 disables): declared in internal/scan_clean/spike_criterion.h
 MREPAIR_ADD_NAMED_PARAMETER(relax_start_angle)    // a, degrees (spike_angle / 2)
 MREPAIR_ADD_NAMED_PARAMETER(relax_full_angle)     // b, degrees (spike_angle)
 MREPAIR_ADD_NAMED_PARAMETER(relax_rings)          // n of the working region (3)
@@ -115,7 +115,7 @@ bool read_spike_settings(const NP& np, Spike_settings& s, std::string& message)
   const double angle = get_or<double>(np, internal_np::spike_angle, 100.0);
   const double a = get_or<double>(np, internal_np::relax_start_angle, angle / 2);
   const double b = get_or<double>(np, internal_np::relax_full_angle, angle);
-  s.height_factor = get_or<double>(np, internal_np::spike_height_factor, 2.0);
+  s.height_factor = get_or<double>(np, internal_np::spike_height_factor, default_spike_height_factor);
   s.rings = get_or<std::size_t>(np, internal_np::relax_rings, std::size_t(3));
   s.max_iterations = get_or<std::size_t>(np, internal_np::max_relax_iterations, std::size_t(10));
   s.max_removal_rounds =

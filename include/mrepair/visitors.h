@@ -5,6 +5,7 @@
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 
+#include <chrono>
 #include <functional>
 #include <type_traits>
 
@@ -81,6 +82,59 @@ public:
 };
 
 } // namespace internal
+
+/// \ingroup mrepair_core
+/// a visitor that asks every call to stop once `seconds` have passed since its
+/// construction (or the last `restart()`), and forwards every hook to `Inner`
+/// (which may be a `std::reference_wrapper` of the user's own visitor; its own
+/// stop requests are honoured too). Long calls then return `Status::cancelled`
+/// with a valid mesh; how far past the budget they run is the time between two
+/// polls (a phase or a batch of operations, see each call's `visitor` parameter).
+/// \code
+/// mrepair::Time_budget_visitor<> budget(2.0);  // two seconds
+/// auto r = mrepair::clean_scan_mesh(mesh, CGAL::parameters::visitor(std::ref(budget)));
+/// if (r.status == mrepair::Status::cancelled) ...  // budget.expired() is true
+/// \endcode
+template <typename Inner = Default_visitor>
+class Time_budget_visitor
+{
+  using Clock = std::chrono::steady_clock;
+  Inner inner_;
+  Clock::time_point start_;
+  double budget_;
+  bool expired_ = false;
+
+  auto& in() { return internal::unwrap_visitor(inner_); }
+
+public:
+  /// \param seconds the budget; 0 or less stops at the first poll
+  explicit Time_budget_visitor(double seconds, Inner inner = Inner())
+    : inner_(inner), start_(Clock::now()), budget_(seconds)
+  {}
+  void start_phase(const char* name) { in().start_phase(name); }
+  void end_phase(const char* name) { in().end_phase(name); }
+  void progress(double fraction) { in().progress(fraction); }
+  /// `true` once the budget is spent (and from then on) or when `Inner` asks to stop.
+  bool stop_requested()
+  {
+    if (!expired_ && !(elapsed() < budget_)) expired_ = true;
+    return expired_ || in().stop_requested();
+  }
+  /// `true` when a poll found the budget spent.
+  bool expired() const { return expired_; }
+  /// seconds since construction or the last `restart()`.
+  double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+  /// starts a new budget of `seconds` now.
+  void restart(double seconds)
+  {
+    budget_ = seconds;
+    start_ = Clock::now();
+    expired_ = false;
+  }
+  /// the wrapped visitor.
+  Inner& inner() { return inner_; }
+};
+
 } // namespace mrepair
 
 #endif // MREPAIR_VISITORS_H

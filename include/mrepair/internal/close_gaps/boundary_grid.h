@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace mrepair {
@@ -16,6 +15,10 @@ namespace internal {
 // 64-bit edge key. It only grows: edges that change are inserted again and
 // the caller validates candidates (lazy deletion), which keeps each update
 // O(length / cell) without bookkeeping of where an edge was registered.
+//
+// Flat storage: an open-addressing table maps a cell to the head of a chain
+// of items in one pool (no allocation per cell; the gap closing inserts and
+// queries a few cells per contraction, so hashing is the hot path).
 class Segment_grid
 {
 public:
@@ -28,14 +31,20 @@ public:
     P a, b;
   };
 
-  void init(const P& origin, double cell)
+  // `expected`: number of cells expected (sizes the table; it grows anyway).
+  void init(const P& origin, double cell, std::size_t expected = 0)
   {
     origin_ = origin;
     cell_ = cell;
     inv_ = 1.0 / cell;
-    cells_.clear();
+    items_.clear();
+    next_.clear();
+    std::size_t cap = 64;
+    while (cap < 2 * expected) cap <<= 1;
+    reset_table(cap);
   }
   double cell() const { return cell_; }
+  std::size_t size() const { return items_.size(); }
 
   // registers `key` in every cell the segment [a,b] may touch: the segment is
   // cut in pieces no longer than a cell and each piece's box is covered.
@@ -55,9 +64,14 @@ public:
       for (long x = lo[0]; x <= hi[0]; ++x)
         for (long y = lo[1]; y <= hi[1]; ++y)
           for (long z = lo[2]; z <= hi[2]; ++z) {
-            std::vector<Item>& c = cells_[pack(x, y, z)];
-            if (c.empty() || c.back().key != key || c.back().a != a || c.back().b != b)
-              c.push_back(Item{key, a, b});
+            std::uint32_t& head = slot(pack(x, y, z));
+            if (head != npos) {
+              const Item& h = items_[head];
+              if (h.key == key && h.a == a && h.b == b) continue;  // pieces share cells
+            }
+            items_.push_back(Item{key, a, b});
+            next_.push_back(head);
+            head = std::uint32_t(items_.size() - 1);
           }
     }
   }
@@ -80,14 +94,19 @@ public:
     }
     for (long x = lo[0]; x <= hi[0]; ++x)
       for (long y = lo[1]; y <= hi[1]; ++y)
-        for (long z = lo[2]; z <= hi[2]; ++z) {
-          auto it = cells_.find(pack(x, y, z));
-          if (it == cells_.end()) continue;
-          for (const Item& k : it->second) f(k);
-        }
+        for (long z = lo[2]; z <= hi[2]; ++z)
+          for (std::uint32_t i = find(pack(x, y, z)); i != npos; i = next_[i]) f(items_[i]);
   }
 
 private:
+  static constexpr std::uint32_t npos = 0xffffffffu;
+  static constexpr std::uint64_t empty = ~std::uint64_t(0);  // pack() never yields it (63 bits)
+  struct Slot
+  {
+    std::uint64_t cell;
+    std::uint32_t head;
+  };
+
   static double sq(double x) { return x * x; }
   long index(double x, int d) const { return static_cast<long>(std::floor((x - origin_[d]) * inv_)); }
   static std::uint64_t pack(long x, long y, long z)
@@ -95,10 +114,59 @@ private:
     const std::uint64_t m = (1u << 21) - 1;
     return ((std::uint64_t(x) & m) << 42) | ((std::uint64_t(y) & m) << 21) | (std::uint64_t(z) & m);
   }
+  std::size_t hash(std::uint64_t k) const { return std::size_t((k * 0x9E3779B97F4A7C15ull) >> shift_); }
+
+  void reset_table(std::size_t cap)
+  {
+    slots_.assign(cap, Slot{empty, npos});
+    mask_ = cap - 1;
+    shift_ = 64;
+    for (std::size_t c = cap; c > 1; c >>= 1) --shift_;
+    used_ = 0;
+  }
+  std::uint32_t find(std::uint64_t k) const
+  {
+    for (std::size_t i = hash(k);; i = (i + 1) & mask_) {
+      const Slot& s = slots_[i];
+      if (s.cell == k) return s.head;
+      if (s.cell == empty) return npos;
+    }
+  }
+  // the chain head of cell k, created empty when missing.
+  std::uint32_t& slot(std::uint64_t k)
+  {
+    if (2 * (used_ + 1) > slots_.size()) grow();
+    for (std::size_t i = hash(k);; i = (i + 1) & mask_) {
+      Slot& s = slots_[i];
+      if (s.cell == k) return s.head;
+      if (s.cell == empty) {
+        s.cell = k;
+        ++used_;
+        return s.head;
+      }
+    }
+  }
+  void grow()
+  {
+    std::vector<Slot> old;
+    old.swap(slots_);
+    reset_table(old.size() * 2);
+    for (const Slot& s : old)
+      if (s.cell != empty) {
+        std::size_t i = hash(s.cell);
+        while (slots_[i].cell != empty) i = (i + 1) & mask_;
+        slots_[i] = s;
+        ++used_;
+      }
+  }
 
   P origin_{{0, 0, 0}};
   double cell_ = 1, inv_ = 1;
-  std::unordered_map<std::uint64_t, std::vector<Item>> cells_;
+  std::vector<Slot> slots_;
+  std::size_t mask_ = 0, used_ = 0;
+  int shift_ = 64;
+  std::vector<Item> items_;
+  std::vector<std::uint32_t> next_;  // chain of items in a cell, newest first
 };
 
 } // namespace internal

@@ -11,19 +11,26 @@
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
+#include <CGAL/Surface_mesh/Surface_mesh_fwd.h>
 #include <CGAL/number_utils.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <queue>
 #include <string>
-#include <unordered_map>
-#include <unordered_set>
+#include <type_traits>
 #include <utility>
 #include <vector>
+
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+#endif
 
 // Algorithm-specific named parameters (see close_gaps.h for their meaning).
 MREPAIR_ADD_NAMED_PARAMETER(gap_lambda)                 // in [0,1], merged position λv+(1-λ)v'
@@ -86,6 +93,9 @@ struct Gap_closing_result
 };
 
 namespace internal {
+template <class T> struct Gap_is_surface_mesh : std::false_type {};
+template <class P> struct Gap_is_surface_mesh<CGAL::Surface_mesh<P>> : std::true_type {};
+
 // border halfedge count and border cycle count of a halfedge graph.
 template <class Mesh>
 std::pair<std::size_t, std::size_t> count_boundary(const Mesh& m)
@@ -223,54 +233,55 @@ public:
       message_ = "tolerance must be finite and >= 0, gap_lambda in [0,1]";
       return;
     }
-    if (faces(tm).size() == 0) {
+    if (faces(tm).first == faces(tm).second) {
       status_ = Status::empty_input;
       message_ = "the mesh has no faces";
       return;
     }
-    double lo[3] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
-                    std::numeric_limits<double>::max()};
-    double hi[3] = {-lo[0], -lo[1], -lo[2]};
-    // idmap_ is not initialised: 0 means "no id yet", which is also what an
-    // unset entry of a dynamic map reads on both Surface_mesh and Polyhedron_3.
-    for (vertex_descriptor v : vertices(tm)) {
-      const Point& p = get(vpm_, v);
-      double c[3] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
-      for (int d = 0; d < 3; ++d) {
-        if (!std::isfinite(c[d])) {
-          status_ = Status::non_finite_input;
-          message_ = "a vertex coordinate is NaN or infinite";
-          return;
-        }
-        lo[d] = std::min(lo[d], c[d]);
-        hi[d] = std::max(hi[d], c[d]);
-      }
+    // bounding box and finiteness of every vertex (a NaN anywhere is bad input)
+    std::array<double, 6> box;
+    if (!bounding_box(box)) {
+      status_ = Status::non_finite_input;
+      message_ = "a vertex coordinate is NaN or infinite";
+      return;
     }
+    const double* lo = box.data();
+    const double* hi = box.data() + 3;
+    // border halfedges in one pass; a valid mesh has faces of degree >= 3, so it
+    // is a triangle mesh exactly when its inner halfedges are 3 per face.
+    std::vector<halfedge_descriptor> border;
+    const std::size_t nh = collect_border(border);
 #ifndef NDEBUG
     const bool valid = CGAL::is_valid_polygon_mesh(tm);  // O(n) and slow: debug builds only
 #else
     const bool valid = true;
 #endif
-    if (!valid || !CGAL::is_triangle_mesh(tm)) {
+    if (!valid || nh - border.size() != 3 * std::size_t(num_faces(tm))) {
       status_ = Status::invalid_mesh;
       message_ = "the input is not a valid triangle mesh";
       return;
     }
     double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                             (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    if (!(diag <= 1e100)) {  // products of up to three coordinate differences must stay finite
+      status_ = Status::non_finite_input;
+      message_ = "coordinates too large: bounding-box diagonal above 1e100";
+      return;
+    }
     max_dist_ = relative ? max_distance * diag : max_distance;
     snap_ = snap < 0 ? max_dist_ : snap;
 
     // boundary vertices and edges get stable ids
     std::vector<std::uint64_t> edges;
+    edges.reserve(border.size());
     double total = 0;
-    for (halfedge_descriptor h : halfedges(tm)) {
-      if (!is_border(h, tm)) continue;
+    for (halfedge_descriptor h : border) {
       Id a = id_of(source(h, tm)), b = id_of(target(h, tm));
       edges.push_back(key(a, b));
       total += std::sqrt(sqdist(pos(a), pos(b)));
     }
     const std::size_t nb = vd_.size();
+    input_boundary_ = nb;
     std::size_t pinched = 0;
     boundary_stats(boundary_edges_before_, boundary_loops_before_, pinched);
 
@@ -280,11 +291,11 @@ public:
 
     double mean = edges.empty() ? 0 : total / edges.size();
     double cell = std::max({max_dist_, mean, diag * 1e-6, 1e-300});
-    grid_.init({lo[0], lo[1], lo[2]}, cell);
+    grid_.init({lo[0], lo[1], lo[2]}, cell, 2 * edges.size());
     for (std::uint64_t e : edges) grid_.insert(e, pos(ka(e)), pos(kb(e)));
-    vgrid_.init({lo[0], lo[1], lo[2]}, cell);
+    vgrid_.init({lo[0], lo[1], lo[2]}, cell, nb);
     for (Id v = 0; v < nb; ++v) vgrid_.insert(v, pos(v), pos(v));
-    for (Id v = 0; v < nb; ++v) compute_pair(v);
+    initial_pairs(nb);
   }
 
   /// `Status::ok`, or why the input was refused (then every step is a no-op).
@@ -345,6 +356,7 @@ public:
       if (top.d > limit) return false;
       queue_.pop();
       Outcome o = contract(top.v, top.d);
+      if (o != done && o != stale) rejected_[top.v] = 1;
       switch (o) {
         case done: return true;
         case flip: ++rejected_flip_; break;
@@ -398,6 +410,98 @@ private:
   }
   P3 pos(Id i) const { return p3(get(vpm_, vd_[i])); }
 
+  // Surface_mesh: indices are dense, so the O(n) scans below run over index
+  // ranges in parallel; other graphs are scanned through their iterators.
+  static constexpr bool indexed = internal::Gap_is_surface_mesh<TriangleMesh>::value;
+
+  // bounding box of all vertices as {lo, hi}; false when a coordinate is not finite.
+  bool bounding_box(std::array<double, 6>& box) const
+  {
+    const double inf = std::numeric_limits<double>::infinity();
+    std::array<double, 6> init{{inf, inf, inf, -inf, -inf, -inf}};
+    auto add = [&](std::array<double, 6>& b, vertex_descriptor v) {
+      const Point& p = get(vpm_, v);
+      const double c[3] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+      for (int d = 0; d < 3; ++d) {
+        if (!std::isfinite(c[d])) return false;
+        b[d] = std::min(b[d], c[d]);
+        b[d + 3] = std::max(b[d + 3], c[d]);
+      }
+      return true;
+    };
+    auto join = [](const std::array<double, 6>& a, const std::array<double, 6>& b) {
+      std::array<double, 6> r;
+      for (int d = 0; d < 3; ++d) {
+        r[d] = std::min(a[d], b[d]);
+        r[d + 3] = std::max(a[d + 3], b[d + 3]);
+      }
+      return r;
+    };
+    bool finite = true;
+    if constexpr (indexed) {
+#ifdef CGAL_LINKED_WITH_TBB
+      std::atomic<bool> ok{true};
+      const bool garbage = tm_.has_garbage();
+      box = tbb::parallel_reduce(
+          tbb::blocked_range<std::size_t>(0, tm_.num_vertices(), 1 << 15),
+          init,
+          [&](const tbb::blocked_range<std::size_t>& r, std::array<double, 6> b) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+              vertex_descriptor v(static_cast<typename vertex_descriptor::size_type>(i));
+              if (!(garbage && tm_.is_removed(v)) && !add(b, v)) ok = false;
+            }
+            return b;
+          },
+          join);
+      finite = ok;
+      return finite;
+#endif
+    }
+    box = init;
+    for (vertex_descriptor v : vertices(tm_))
+      if (!add(box, v)) return false;
+    return finite;
+  }
+
+  // border halfedges (in halfedge order); returns the number of halfedges.
+  std::size_t collect_border(std::vector<halfedge_descriptor>& out) const
+  {
+    out.clear();
+    if constexpr (indexed) {
+#ifdef CGAL_LINKED_WITH_TBB
+      using Acc = std::pair<std::size_t, std::vector<halfedge_descriptor>>;
+      const bool garbage = tm_.has_garbage();
+      Acc acc = tbb::parallel_reduce(
+          tbb::blocked_range<std::size_t>(0, tm_.num_halfedges(), 1 << 16),
+          Acc(),
+          [&](const tbb::blocked_range<std::size_t>& r, Acc a) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+              halfedge_descriptor h(static_cast<typename halfedge_descriptor::size_type>(i));
+              if (garbage && tm_.is_removed(h)) continue;
+              ++a.first;
+              if (is_border(h, tm_)) a.second.push_back(h);
+            }
+            return a;
+          },
+          [](Acc a, const Acc& b) {
+            a.first += b.first;
+            a.second.insert(a.second.end(), b.second.begin(), b.second.end());
+            return a;
+          });
+      out.swap(acc.second);
+      return acc.first;
+#endif
+    }
+    std::size_t n = 0;
+    for (halfedge_descriptor h : halfedges(tm_)) {
+      ++n;
+      if (is_border(h, tm_)) out.push_back(h);
+    }
+    return n;
+  }
+
+  // idmap_ is not initialised: 0 means "no id yet", which is also what an
+  // unset entry of a dynamic map reads on both Surface_mesh and Polyhedron_3.
   Id id_of(vertex_descriptor v)
   {
     std::uint32_t s = get(idmap_, v);
@@ -411,6 +515,11 @@ private:
     ver_.push_back(0);
     has_orig_.push_back(0);
     orig_.emplace_back();
+    rejected_.push_back(0);
+    head_.push_back(npos);
+    next_.push_back(npos);
+    prev_.push_back(npos);
+    owner_.push_back(npos);
     return i;
   }
 
@@ -455,12 +564,13 @@ private:
   }
   // border halfedges, border cycles and pinched vertices. Every border
   // halfedge joins two vertices of the input boundary (contractions only glue
-  // or split boundary edges), so a scan of the vertices with ids suffices.
+  // or split boundary edges), so a scan of those vertices (the first ids) suffices.
   void boundary_stats(std::size_t& edges, std::size_t& loops, std::size_t& pinched) const
   {
     edges = loops = pinched = 0;
     std::vector<halfedge_descriptor> border;
-    for (Id i = 0; i < vd_.size(); ++i) {
+    const std::size_t n = input_boundary_ ? input_boundary_ : vd_.size();
+    for (Id i = 0; i < n; ++i) {
       if (!alive_[i]) continue;
       halfedge_descriptor hv = halfedge(vd_[i], tm_);
       if (hv == GT::null_halfedge()) continue;
@@ -473,30 +583,34 @@ private:
       if (k > 1) ++pinched;
     }
     edges = border.size();
-    std::unordered_set<std::uint64_t> seen;
+    // loops: walk each cycle once, marking its halfedges in a sorted key array
     auto hkey = [&](halfedge_descriptor h) {
       return key(get(idmap_, source(h, tm_)), get(idmap_, target(h, tm_)));
     };
+    std::vector<std::uint64_t> keys(border.size());
+    for (std::size_t i = 0; i < border.size(); ++i) keys[i] = hkey(border[i]);
+    std::sort(keys.begin(), keys.end());
+    std::vector<char> seen(keys.size(), 0);
+    auto mark = [&](halfedge_descriptor h) -> char& {
+      return seen[std::lower_bound(keys.begin(), keys.end(), hkey(h)) - keys.begin()];
+    };
     for (halfedge_descriptor h : border) {
-      if (seen.count(hkey(h))) continue;
+      if (mark(h)) continue;
       ++loops;
       halfedge_descriptor g = h;
       do {
-        seen.insert(hkey(g));
+        mark(g) = 1;
         g = next(g, tm_);
       } while (g != h);
     }
   }
 
   // ---- pairing -------------------------------------------------------------
-  // finds the nearest boundary edge of `u` within max distance and queues it.
-  void compute_pair(Id u)
+  // the nearest boundary edge of `u` within max distance (kind none if there is
+  // none). Read-only: the initial pairing runs it in parallel.
+  Pair find_pair(Id u, const P3& p) const
   {
-    ++ver_[u];
-    Pair& pr = pair_[u];
-    pr.kind = none;
-    if (!alive_[u] || !selected_[u] || !is_boundary_vertex(u)) return;
-    const P3 p = pos(u);
+    Pair pr;
     double best = std::numeric_limits<double>::max(), best_t = 0;
     std::uint64_t best_e = 0;
     // distances on the registered copies; only a candidate that beats the best
@@ -514,7 +628,7 @@ private:
       best_t = t;
       best_e = e;
     });
-    if (best > max_dist_) return;
+    if (best > max_dist_) return pr;
     Id a = ka(best_e), b = kb(best_e);
     P3 pa = pos(a), pb = pos(b);
     double len = std::sqrt(sqdist(pa, pb));
@@ -532,8 +646,71 @@ private:
     }
     // the error is the distance to the edge, also when the projection snaps to an end
     pr.dist = best;
-    lists_[best_e].push_back(u);
+    return pr;
+  }
+
+  // every vertex paired with an edge leaving `a` is in the list head_[a]
+  // (intrusive, doubly linked through next_/prev_), so that a changed edge finds
+  // its vertices without a map.
+  void link(Id u, Id a)
+  {
+    owner_[u] = a;
+    prev_[u] = npos;
+    next_[u] = head_[a];
+    if (head_[a] != npos) prev_[head_[a]] = u;
+    head_[a] = u;
+  }
+  void unlink(Id u)
+  {
+    const Id a = owner_[u];
+    if (a == npos) return;
+    if (prev_[u] != npos) next_[prev_[u]] = next_[u];
+    else head_[a] = next_[u];
+    if (next_[u] != npos) prev_[next_[u]] = prev_[u];
+    owner_[u] = npos;
+  }
+
+  // finds the nearest boundary edge of `u` within max distance and queues it.
+  void compute_pair(Id u)
+  {
+    ++ver_[u];
+    rejected_[u] = 0;
+    unlink(u);
+    Pair& pr = pair_[u];
+    pr.kind = none;
+    if (!alive_[u] || !selected_[u] || !is_boundary_vertex(u)) return;
+    pr = find_pair(u, pos(u));
+    if (pr.kind == none) return;
+    link(u, ka(pr.edge));
     queue_.push(Entry{pr.dist, u, ver_[u]});
+  }
+
+  // pairs of all input boundary vertices: the queries in parallel (read-only),
+  // then lists and queue in id order.
+  void initial_pairs(std::size_t nb)
+  {
+    auto run = [&](std::size_t i) {
+      Id u = Id(i);
+      ver_[u] = 1;
+      if (selected_[u]) pair_[u] = find_pair(u, pos(u));
+    };
+#ifdef CGAL_LINKED_WITH_TBB
+    if (nb >= 2048)
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 256),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i != r.end(); ++i) run(i);
+                        });
+    else
+#endif
+      for (std::size_t i = 0; i < nb; ++i) run(i);
+    std::vector<Entry> entries;
+    entries.reserve(nb);
+    for (Id u = 0; u < nb; ++u)
+      if (pair_[u].kind != none) {
+        link(u, ka(pair_[u].edge));
+        entries.push_back(Entry{pair_[u].dist, u, ver_[u]});
+      }
+    queue_ = std::priority_queue<Entry>(std::less<Entry>(), std::move(entries));
   }
 
   static double seg_dist(const P3& p, const P3& a, const P3& b, double& t)
@@ -697,8 +874,20 @@ private:
       for (Id i : t) affected_.push_back(i);
     std::sort(affected_.begin(), affected_.end());
     affected_.erase(std::unique(affected_.begin(), affected_.end()), affected_.end());
-    for (Id c : affected_)
-      if (c != op.removed_vertex && !star_ok(c, op.removed, op.added)) return non_manifold;
+    // vertex-vertex: a neighbour of u not adjacent to w only sees u renamed to w
+    // in its faces (w new in its link), so its fan keeps its shape: skip its check
+    nbr_.clear();
+    if (pr.kind == vv) {
+      halfedge_descriptor hw = halfedge(vd_[moved], tm_);
+      if (hw != GT::null_halfedge())
+        for (halfedge_descriptor h : CGAL::halfedges_around_target(hw, tm_)) nbr_.push_back(id_of(source(h, tm_)));
+      std::sort(nbr_.begin(), nbr_.end());
+    }
+    for (Id c : affected_) {
+      if (c == op.removed_vertex) continue;
+      if (pr.kind == vv && c != moved && !std::binary_search(nbr_.begin(), nbr_.end(), c)) continue;
+      if (!star_ok(c, op.removed, op.added)) return non_manifold;
+    }
     // geometry: the added faces against the faces they replace, the moved vertex's other faces against themselves
     for (std::size_t i = 0; i < op.added.size(); ++i) {
       Outcome o = check_face(op.added[i], ref[i], moved, to);
@@ -732,6 +921,15 @@ private:
     // maintain the pairs (Algorithm 1, lines 8-14)
     after_.clear();
     border_edges_around(affected_, after_);
+    // vertices paired with an edge that left the border or moved need a new
+    // pair; an edge still on the border with both ends in place keeps its pairs
+    recompute_.clear();
+    for (std::uint64_t e : before_) {
+      const bool changed =
+          ka(e) == moved || kb(e) == moved || !std::binary_search(after_.begin(), after_.end(), e);
+      for (Id v = head_[ka(e)]; v != npos; v = next_[v])
+        if (pair_[v].edge == e && (changed || rejected_[v])) recompute_.push_back(v);
+    }
     // keep only the new boundary edges and those that moved: the others are
     // registered already and cannot be nearer to anyone than before
     after_.erase(std::remove_if(after_.begin(), after_.end(),
@@ -741,15 +939,14 @@ private:
                                 }),
                  after_.end());
     for (std::uint64_t e : after_) grid_.insert(e, pos(ka(e)), pos(kb(e)));
-    recompute_.clear();
-    for (std::uint64_t e : before_) {
-      auto it = lists_.find(e);
-      if (it == lists_.end()) continue;
-      for (Id v : it->second)
-        if (pair_[v].kind != none && pair_[v].edge == e) recompute_.push_back(v);
-      lists_.erase(it);
-    }
-    for (Id c : affected_) recompute_.push_back(c);
+    // of the affected vertices only the moved one needs a new pair: the others
+    // keep their position and their paired edge (else it is in before_); one that
+    // left the border or was removed is caught when its entry is popped (stale)
+    // (a pair rejected earlier is retried whenever its neighbourhood changed)
+    recompute_.push_back(moved);
+    if (ops_.back().removed_vertex != npos) recompute_.push_back(ops_.back().removed_vertex);
+    for (Id c : affected_)
+      if (rejected_[c]) recompute_.push_back(c);
     // The paper recomputes only the vertices paired with a changed edge; a
     // changed edge may also become the nearest one of other vertices (or the
     // first one within reach), so look for those too.
@@ -896,14 +1093,16 @@ private:
   double max_dist_ = 0, lambda_ = 0.5, snap_ = 0;
 
   std::vector<vertex_descriptor> vd_;  // stable id -> current descriptor
+  std::size_t input_boundary_ = 0;     // ids below it: the input boundary vertices
   std::vector<char> alive_, selected_, has_orig_;
+  std::vector<char> rejected_;  // the vertex's pair was popped and refused (flip, non-manifold, ...)
   std::vector<Pair> pair_;
   std::vector<std::uint32_t> ver_;
   std::vector<Point> orig_;
 
   internal::Segment_grid grid_;   // boundary edges (keys: edge keys)
   internal::Segment_grid vgrid_;  // boundary vertices (keys: ids)
-  std::unordered_map<std::uint64_t, std::vector<Id>> lists_;  // edge -> vertices paired with it
+  std::vector<Id> head_, next_, prev_, owner_;  // vertices by the source of their paired edge
   std::priority_queue<Entry> queue_;
   std::vector<Op> ops_;
   std::size_t pos_ = 0;
@@ -914,7 +1113,7 @@ private:
 
   // scratch
   std::vector<std::uint64_t> before_, after_;
-  std::vector<Id> affected_, recompute_;
+  std::vector<Id> affected_, recompute_, nbr_;
   std::vector<Tri> tmp_, tmp2_;
   std::vector<std::pair<Id, Id>> link_;
 };

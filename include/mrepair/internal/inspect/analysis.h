@@ -6,6 +6,7 @@
 #include <mrepair/internal/inspect/parallel.h>
 #include <mrepair/internal/inspect/self_intersections.h>
 #include <mrepair/internal/inspect/surface_arrays.h>
+#include <mrepair/internal/scan_clean/spike_criterion.h>
 
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -31,6 +32,7 @@ namespace internal {
 struct Inspect_thresholds
 {
   double spike_angle = 100.0;
+  double spike_height_factor = default_spike_height_factor;
   double zero_edge_factor = 0.1;
   double skinny_edge_factor = 0.25;
   double skinny_angle = 10.0;
@@ -523,12 +525,19 @@ private:
     spiked_.assign(nv, 0);
     std::vector<double> sum(nv, 0.0);
     std::vector<Inspect_index> cnt(nv, 0);
+    std::vector<double> max_dihedral(nv, -1.0);       // degrees, for the height criterion
+    std::vector<unsigned char> inconsistent(nv, 0);   // no consistently oriented link
     for (std::size_t e = 0; e < ne; ++e) {
       const std::size_t nfe = a_.edge_off[e + 1] - a_.edge_off[e];
       const Inspect_index ends[2] = {a_.edge_v[2 * e], a_.edge_v[2 * e + 1]};
       const bool spike = edge_dihedral_[e] > t_.spike_angle; // false for NaN
+      const bool flipped =
+          nfe == 2 && forward(a_.edge_corners[a_.edge_off[e]], e) ==
+                          forward(a_.edge_corners[a_.edge_off[e] + 1], e);
       for (Inspect_index v : ends) {
         ++valence_[v];
+        if (edge_dihedral_[e] > max_dihedral[v]) max_dihedral[v] = edge_dihedral_[e];
+        if (flipped) inconsistent[v] = 1;
         if (nfe != 2) not_interior_[v] = 1;
         if (nfe == 1) boundary_vertex_[v] = 1;
         if (spike) spiked_[v] = 1;
@@ -538,6 +547,7 @@ private:
         }
       }
     }
+    spikes_by_height(max_dihedral, inconsistent);
     vertex_mean_len_.assign(nv, std::numeric_limits<double>::quiet_NaN());
     std::size_t spiked = 0;
     for (std::size_t v = 0; v < nv; ++v) {
@@ -545,6 +555,52 @@ private:
       spiked += spiked_[v];
     }
     r_.spiked_vertices = spiked;
+  }
+
+  // The second spike criterion (spike_criterion.h, shared with relax_spikes):
+  // interior vertices far above the plane of their link. Its pre-filter
+  // leaves few candidates, whose links are summed in one pass over corners.
+  void spikes_by_height(const std::vector<double>& max_dihedral_deg,
+                        const std::vector<unsigned char>& inconsistent)
+  {
+    const std::size_t nv = a_.num_vertices;
+    if (!(t_.spike_height_factor > 0)) return;
+    auto radians = [&](std::size_t v) { return max_dihedral_deg[v] / inspect_rad_to_deg; };
+    std::vector<Inspect_index> slot(nv, inspect_npos);
+    std::vector<Inspect_index> candidates;
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (spiked_[v] || not_interior_[v] || inconsistent[v] || !a_.finite[v]) continue;
+      // the predicate's pre-filter selects the candidates (gather runs only past it)
+      spiked_by_height(radians(v), t_.spike_height_factor, [&](Spike_link_sums&) {
+        slot[v] = static_cast<Inspect_index>(candidates.size());
+        candidates.push_back(static_cast<Inspect_index>(v));
+        return false;
+      });
+    }
+    if (candidates.empty()) return;
+    std::vector<Spike_link_sums> sums(candidates.size());
+    std::vector<unsigned char> bad(candidates.size(), 0);
+    const std::size_t nc = a_.corner_v.size();
+    for (std::size_t c = 0; c < nc; ++c) {
+      const Inspect_index k = slot[a_.corner_v[c]];
+      if (k == inspect_npos) continue;
+      const std::size_t f = a_.corner_f[c];
+      if (!face_ok_[f] || a_.face_skip[f] || repeated_[f]) {
+        bad[k] = 1;
+        continue;
+      }
+      // the link edges of this face: the chain from next(c) round to prev(c)
+      const double* p = a_.point(a_.corner_v[c]);
+      for (std::size_t i = a_.next_corner(c); a_.next_corner(i) != c; i = a_.next_corner(i))
+        sums[k].add(p, a_.point(a_.corner_v[i]), a_.point(a_.corner_v[a_.next_corner(i)]));
+    }
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      const Inspect_index v = candidates[k];
+      spiked_[v] = spiked_by_height(radians(v), t_.spike_height_factor, [&](Spike_link_sums& s) {
+        s = sums[k];
+        return !bad[k];
+      });
+    }
   }
 
   // RameshCleaner 3.6. Edge e is short when |e| < eps * l_g (zero edge) or

@@ -14,6 +14,13 @@
 //             tangent plane; line vertices to the weighted edge midpoints
 //     project onto the input (line vertices onto the input lines), reading the
 //             sizing field at the projection
+//     cleanup faces under 20 degrees: angle-improving flip or needle collapse
+//   last iteration: vertices of faces under 30 degrees try positions towards
+//             their neighbours (lines along the line), projected, keeping the
+//             one that raises the smallest angle of their star
+//   collapses and flips never create a fold (two adjacent faces with normals
+//   more than 120 degrees apart that were not folded before): folds at thin
+//   parts were the self-intersections of coarse remeshing
 #ifndef MREPAIR_INTERNAL_REMESH_REMESHER_H
 #define MREPAIR_INTERNAL_REMESH_REMESHER_H
 
@@ -331,10 +338,33 @@ public:
     return true;
   }
 
+  // a pair of faces meeting at an angle sharper than this (normals more than
+  // 120 degrees apart) is a fold; operations must not create new ones
+  static bool folds(const Vec3& na, const Vec3& nb)
+  {
+    double d = dot(na, nb);
+    return d < 0 && d * d > 0.25 * sqlen(na) * sqlen(nb);
+  }
+
+  Vec3 face_normal(halfedge_descriptor g) const
+  {
+    const Vec3 a = get(pos_, source(g, tm_));
+    return cross(get(pos_, target(g, tm_)) - a, get(pos_, target(next(g, tm_), tm_)) - a);
+  }
+
+  struct Star_face
+  {
+    vertex_descriptor w, x;  // the face (w, centre, x)
+    Vec3 before, after;
+  };
+
   bool geometry_ok(halfedge_descriptor h) const
   {
     vertex_descriptor v0 = source(h, tm_), v1 = target(h, tm_);
     const Vec3 p0 = get(pos_, v0), p1 = get(pos_, v1);
+    // the star of v1 after the collapse, to find folds between its faces
+    Star_face star[64];
+    int ns = 0;
     for (halfedge_descriptor g : halfedges_around_target(v0, tm_)) {
       vertex_descriptor w = source(g, tm_);
       if (w == v1) continue;
@@ -349,7 +379,28 @@ public:
       if (!(l1 > 1e-24 * l0) || l1 == 0) return false;
       double d = dot(n0, n1);
       if (d <= 0 || d * d < collapse_cos_ * collapse_cos_ * l0 * l1) return false;
+      // the unchanged face across (x, w)
+      halfedge_descriptor out = opposite(prev(g, tm_), tm_);
+      if (!is_border(out, tm_)) {
+        Vec3 no = face_normal(out);
+        if (folds(n1, no) && !folds(n0, no)) return false;
+      }
+      if (ns == 64) return false;  // a huge star: not worth the risk
+      star[ns++] = {w, x, n0, n1};
     }
+    for (halfedge_descriptor g : halfedges_around_target(v1, tm_)) {
+      if (is_border(g, tm_)) continue;
+      vertex_descriptor w = source(g, tm_), x = target(next(g, tm_), tm_);
+      if (w == v0 || x == v0) continue;  // removed with the collapse
+      if (ns == 64) return false;
+      Vec3 n = face_normal(g);
+      star[ns++] = {w, x, n, n};
+    }
+    for (int i = 0; i < ns; ++i)
+      for (int j = 0; j < ns; ++j)
+        if (star[i].x == star[j].w && i != j && folds(star[i].after, star[j].after) &&
+            !folds(star[i].before, star[j].before))
+          return false;
     return true;
   }
 
@@ -439,6 +490,27 @@ public:
   }
 
   // ------------------------------------------------------------------- flip
+  // would flipping h fold one of the new faces against an outer neighbour?
+  bool flip_folds(halfedge_descriptor h) const
+  {
+    halfedge_descriptor o = opposite(h, tm_);
+    const Vec3 pa = get(pos_, source(h, tm_)), pb = get(pos_, target(h, tm_)),
+               pc = get(pos_, target(next(h, tm_), tm_)), pd = get(pos_, target(next(o, tm_), tm_));
+    const Vec3 m1 = cross(pb - pa, pc - pa), m2 = cross(pa - pb, pd - pb);  // (a,b,c), (b,a,d)
+    const Vec3 n1 = cross(pd - pa, pc - pa), n2 = cross(pc - pb, pd - pb);  // (a,d,c), (b,c,d)
+    // outer edges: (b,c), (c,a) of the face of h; (a,d), (d,b) of the face of o
+    halfedge_descriptor outer[4] = {next(h, tm_), prev(h, tm_), next(o, tm_), prev(o, tm_)};
+    const Vec3* before[4] = {&m1, &m1, &m2, &m2};
+    const Vec3* after[4] = {&n2, &n1, &n1, &n2};
+    for (int i = 0; i < 4; ++i) {
+      halfedge_descriptor g = opposite(outer[i], tm_);
+      if (is_border(g, tm_)) continue;
+      Vec3 no = face_normal(g);
+      if (folds(*after[i], no) && !folds(*before[i], no)) return true;
+    }
+    return false;
+  }
+
   void flip_edges()
   {
     for (vertex_descriptor v : vertices(tm_)) put(deg_, v, static_cast<int>(degree(v, tm_)));
@@ -465,6 +537,7 @@ public:
       double l1 = sqlen(n1), l2 = sqlen(n2), lm = sqlen(m1) + sqlen(m2);
       if (!(l1 > 1e-12 * lm) || !(l2 > 1e-12 * lm)) continue;
       if (dot(n1, m) <= 0 || dot(n2, m) <= 0 || dot(n1, n2) <= 0) continue;
+      if (flip_folds(h)) continue;
       if (halfedge(c, d, tm_).second) continue;
       CGAL::Euler::flip_edge(h, tm_);
       put(deg_, a, da - 1);
@@ -518,6 +591,7 @@ public:
     double lm = len(m);
     if (!(lm > 0) || dot(n1, m) <= 0.7 * len(n1) * lm || dot(n2, m) <= 0.7 * len(n2) * lm)
       return false;
+    if (flip_folds(h)) return false;
     return !halfedge(c, d, tm_).second;
   }
 
@@ -579,6 +653,89 @@ public:
           }
         }
       }
+    }
+  }
+
+  // ------------------------------------------- min-angle vertex optimisation
+  // Relaxation evens out areas, not angles; next to feature lines (narrow
+  // strips, wedges between lines) its fixed point can keep a thin triangle.
+  // The vertices of the worst faces try a few positions towards their
+  // neighbours (line vertices only along their line), projected back onto
+  // the input, and keep the one that raises the smallest angle of their star
+  // without turning any face more than ~45 degrees.
+
+  // cosine of the smallest angle of the star of v with v at p (2: rejected)
+  double star_min_cos(vertex_descriptor v, const Vec3& p) const
+  {
+    double worst = -1;
+    const Vec3 pv = get(pos_, v);
+    for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
+      if (is_border(g, tm_)) continue;
+      const Vec3 pa = get(pos_, source(g, tm_)), pb = get(pos_, target(next(g, tm_), tm_));
+      Vec3 n0 = cross(pv - pa, pb - pv), n1 = cross(p - pa, pb - p);
+      double d = dot(n0, n1);
+      if (!(d > 0) || d * d < 0.5 * sqlen(n0) * sqlen(n1)) return 2.;
+      worst = std::max(worst, min_angle_cos(pa, p, pb));
+    }
+    return worst;
+  }
+
+  void optimize_bad_vertices(double min_deg, bool project, int rounds)
+  {
+    const double cthr = std::cos(min_deg * CGAL_PI / 180.);
+    const bool lines = ref.has_lines(), surf = ref.has_surface();
+    std::vector<vertex_descriptor> vs, moved;
+    auto add_if_bad = [&](halfedge_descriptor h) {
+      vertex_descriptor v3[3] = {source(h, tm_), target(h, tm_), target(next(h, tm_), tm_)};
+      if (min_angle_cos(get(pos_, v3[0]), get(pos_, v3[1]), get(pos_, v3[2])) > cthr)
+        for (vertex_descriptor v : v3)
+          if (get(kind_, v) == V_FREE || (relax_lines_ && get(kind_, v) == V_LINE))
+            vs.push_back(v);
+    };
+    // one scan of the mesh; later rounds revisit the bad faces around moved vertices
+    for (face_descriptor f : faces(tm_)) add_if_bad(halfedge(f, tm_));
+    for (int round = 0; round < rounds && !vs.empty(); ++round) {
+      std::sort(vs.begin(), vs.end());
+      vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+      moved.clear();
+      for (vertex_descriptor v : vs) {
+        const bool line = get(kind_, v) == V_LINE;
+        const Vec3 pv = get(pos_, v);
+        double best = star_min_cos(v, pv), best_size = get(size_, v);
+        Vec3 bp = pv;
+        int th = get(thint_, v), sh = get(shint_, v), bth = th, bsh = sh;
+        for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
+          if (line && !(get(flag_, edge(g, tm_)) & LINE)) continue;
+          const Vec3 d = get(pos_, source(g, tm_)) - pv;
+          for (double t : {0.04, 0.08, 0.15, 0.25, 0.35}) {
+            Vec3 c = pv + t * d;
+            // never query the projection trees with NaN (exact predicates abort on it)
+            if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) continue;
+            double s = get(size_, v);
+            int h1 = th, h2 = sh;
+            if (project) {
+              if (!line && surf)
+                c = ref.project_surface(c, s, h1, get(size_, v));
+              else if (line && lines)
+                c = ref.project_line(c, s, h2);
+            }
+            if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) continue;
+            double q = star_min_cos(v, c);
+            if (q < best - 1e-9) { best = q; bp = c; best_size = s; bth = h1; bsh = h2; }
+          }
+        }
+        if (bp.x != pv.x || bp.y != pv.y || bp.z != pv.z) {
+          put(pos_, v, bp);
+          if (!uniform_) put(size_, v, best_size);
+          put(thint_, v, bth);
+          put(shint_, v, bsh);
+          moved.push_back(v);
+        }
+      }
+      vs.clear();
+      for (vertex_descriptor v : moved)
+        for (halfedge_descriptor g : halfedges_around_target(v, tm_))
+          if (!is_border(g, tm_)) add_if_bad(g);
     }
   }
 
@@ -661,7 +818,10 @@ public:
       }
       normal[i] = n;
       double s = get(size_, v);
-      if (project) {
+      // never query the projection trees with NaN (exact predicates abort on it)
+      auto finite3 = [](const Vec3& q) { return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z); };
+      if (!finite3(c)) c = pv;
+      if (project && finite3(c)) {
         if (get(kind_, v) == V_FREE && surf) {
           int hint = get(thint_, v);
           c = ref.project_surface(c, s, hint, get(size_, v));
@@ -722,6 +882,8 @@ public:
       vis.end_phase("relax");
       vis.start_phase("cleanup");
       fix_bad_triangles(bad_angle_);
+      // the cleanup's flips and collapses come after the last relaxation
+      if (it + 1 == iterations) optimize_bad_vertices(30., project, 4);
       vis.end_phase("cleanup");
       ++counters.iterations;
       vis.progress(double(it + 1) / double(iterations));

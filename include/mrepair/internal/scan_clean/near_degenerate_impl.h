@@ -132,6 +132,10 @@ public:
       push(h);
       ++c_.collapsible_edges_initial;
     }
+    if (vis_.stop_requested()) {  // polled before any change, even with nothing to do
+      c_.cancelled = true;
+      return;
+    }
     const double total = static_cast<double>(c_.collapsible_edges_initial) + 1.0;
     std::size_t pops = 0, ops = 0;
     while (!q_.empty()) {

@@ -5,6 +5,7 @@
 
 #include <mrepair/geometric_statistics.h>
 #include <mrepair/internal/scan_clean/common.h>
+#include <mrepair/internal/scan_clean/spike_criterion.h>
 
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -23,7 +24,7 @@ namespace scan_clean {
 struct Spike_settings
 {
   double spike_angle = 0;          // radians; dihedral criterion
-  double height_factor = 2.0;      // second criterion; <= 0 disables it
+  double height_factor = default_spike_height_factor;  // second criterion; <= 0 disables it
   double start_angle = 0;          // a, radians
   double full_angle = 0;           // b, radians
   std::size_t rings = 3;           // n of the working region
@@ -46,49 +47,34 @@ class Spike_detector
 public:
   Spike_detector(const Stats& st, const Spike_settings& s) : st_(st), s_(s) {}
 
-  bool by_dihedral(vertex_descriptor v) const { return st_.max_dihedral(v) > s_.spike_angle; }
+  bool by_dihedral(vertex_descriptor v) const
+  {
+    return spiked_by_dihedral(st_.max_dihedral(v), s_.spike_angle);
+  }
 
   // Tall narrow spikes keep every dihedral angle below 90 degrees, so the
-  // dihedral test misses them. Second criterion: the distance of v from the
-  // plane of its 1-ring (centroid, Newell normal of the link polygon) exceeds
-  // height_factor x the mean length of the link edges. Interior vertices only.
-  //
-  // Pre-filter: the test runs only where the maximum dihedral angle exceeds
-  // 15 degrees. A vertex at least 2 link lengths above its ring has steep faces
-  // whose normals turn by about 360/valence x sin(slope) > 15 degrees between
-  // neighbours (valence up to ~20), so no such spike is skipped, and the
-  // full-mesh scans touch the ring points of few vertices.
+  // dihedral test misses them: the height criterion of spike_criterion.h
+  // (shared with inspect()), on the link of v walked around its halfedges.
   bool by_height(vertex_descriptor v) const
   {
-    if (!(s_.height_factor > 0)) return false;
-    if (!(st_.max_dihedral(v) > 0.2617993877991494)) return false; // 15 degrees
-    const Mesh& m = st_.mesh();
-    halfedge_descriptor h0 = halfedge(v, m);
-    if (h0 == GT::null_halfedge()) return false;
-    Vec ring[64];
-    std::size_t k = 0;
-    for (halfedge_descriptor h : CGAL::halfedges_around_target(h0, m)) {
-      if (is_border(h, m) || k == 64) return false;
-      ring[k++] = st_.point(source(h, m));
-    }
-    if (k < 3) return false;
-    Vec c{{0, 0, 0}};
-    for (std::size_t i = 0; i < k; ++i)
-      for (int j = 0; j < 3; ++j) c[j] += ring[i][j] / static_cast<double>(k);
-    Vec n{{0, 0, 0}};
-    double link = 0;
-    for (std::size_t i = 0; i < k; ++i) {
-      const Vec& a = ring[i];
-      const Vec& b = ring[(i + 1) % k];
-      const Vec x = Stats::cross(Stats::sub(a, c), Stats::sub(b, c));
-      for (int j = 0; j < 3; ++j) n[j] += x[j];
-      link += Stats::norm(Stats::sub(b, a));
-    }
-    link /= static_cast<double>(k);
-    const double nn = Stats::norm(n);
-    if (!(nn > 0) || !(link > 0)) return false;
-    const double dist = std::abs(Stats::dot(Stats::sub(st_.point(v), c), n)) / nn;
-    return dist > s_.height_factor * link;
+    return spiked_by_height(st_.max_dihedral(v), s_.height_factor, [&](Spike_link_sums& sums) {
+      const Mesh& m = st_.mesh();
+      const halfedge_descriptor h0 = halfedge(v, m);
+      if (h0 == GT::null_halfedge()) return false;
+      const Vec p = st_.point(v);
+      Vec first{{0, 0, 0}}, prev{{0, 0, 0}};
+      bool started = false;
+      for (halfedge_descriptor h : CGAL::halfedges_around_target(h0, m)) {
+        if (is_border(h, m)) return false;  // interior vertices only
+        const Vec a = st_.point(source(h, m));
+        if (started) sums.add(p.data(), prev.data(), a.data());
+        else first = a;
+        prev = a;
+        started = true;
+      }
+      if (started) sums.add(p.data(), prev.data(), first.data());  // close the link
+      return true;
+    });
   }
 
   bool spiked(vertex_descriptor v) const { return by_dihedral(v) || by_height(v); }
