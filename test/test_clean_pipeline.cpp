@@ -849,6 +849,42 @@ TYPED_TEST(Clean_pipeline, nan_vertex_on_a_boundary)
   EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
 }
 
+// Finite coordinates near DBL_MAX overflow in averages and cross products
+// (fuzz finding 7: a relaxed spike neighbour went to -inf): every geometry
+// call refuses them, mesh untouched, and a NaN vertex does not count.
+TYPED_TEST(Clean_pipeline, huge_coordinates_are_refused_untouched)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = grid(10, 10);
+  s.points[60] = Point(5, -std::numeric_limits<double>::max(), 0);
+  s.points[5] = Point(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  const Mesh m0 = to_mesh<Mesh>(compacted(s));
+  auto same = [&](const Mesh& m) {
+    std::vector<Point> a, b;
+    for (auto v : vertices(m0)) a.push_back(get(CGAL::vertex_point, m0, v));
+    for (auto v : vertices(m)) b.push_back(get(CGAL::vertex_point, m, v));
+    if (a.size() != b.size() || face_count(m) != face_count(m0)) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (!(a[i].x() == b[i].x() || (std::isnan(a[i].x()) && std::isnan(b[i].x()))) ||
+          a[i].y() != b[i].y() || a[i].z() != b[i].z())
+        return false;
+    return true;
+  };
+  const auto huge = mrepair::Status::non_finite_input;
+  { Mesh m = m0; EXPECT_EQ(mrepair::clean_scan_mesh(m).status, huge); EXPECT_TRUE(same(m)); }
+  { Mesh m = m0; EXPECT_EQ(mrepair::clean_boundaries(m).status, huge); EXPECT_TRUE(same(m)); }
+  { Mesh m = m0; EXPECT_EQ(mrepair::fill_small_holes(m).status, huge); EXPECT_TRUE(same(m)); }
+  // a NaN vertex alone is not "too large": the pipeline removes it
+  Soup t = grid(10, 10);
+  t.points[60] = Point(5, 1e90, 0);
+  t.points[5] = Point(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  Mesh m = to_mesh<Mesh>(compacted(t));
+  auto r = mrepair::clean_scan_mesh(m, MP::min_component_faces(10, MP::max_hole_vertices(10)));
+  EXPECT_TRUE(mrepair::succeeded(r.status)) << mrepair::to_string(r.status);
+  EXPECT_TRUE(all_finite(m));
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+}
+
 // The team generator's scan (mrepair-generate scan), when it is built: after
 // the pipeline no small component, small hole, isolated or non-finite vertex.
 TYPED_TEST(Clean_pipeline, generated_scan)
@@ -887,6 +923,44 @@ TYPED_TEST(Clean_pipeline, generated_scan)
   EXPECT_NEAR(double(face_count(m)), double(f0), 0.05 * double(f0));
 #else
   GTEST_SKIP() << "MREPAIR_GENERATOR not defined";
+#endif
+}
+
+// CAD exports carry quads and n-gons: every command that needs triangles
+// triangulates them (and says so in its report) instead of refusing the file.
+TEST(Cli, polygon_meshes_are_triangulated)
+{
+#ifdef MREPAIR_CLI
+  if (!std::ifstream(MREPAIR_CLI)) GTEST_SKIP() << "mrepair not built";
+  const std::string dir = ::testing::TempDir();
+  const std::string in = dir + "mrepair_cli_quads.off", report = dir + "mrepair_cli_quads.json";
+  {
+    // a cube of quads with one face a hexagon (two of its edges split)
+    std::ofstream f(in);
+    f << "OFF\n10 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+         "0.5 0 0\n0.5 1 0\n"
+         "6 0 3 9 2 1 8\n4 4 5 6 7\n5 0 8 1 5 4\n4 1 2 6 5\n5 2 9 3 7 6\n4 3 0 4 7\n";
+  }
+  for (const char* command : {"repair", "clean", "close-gaps", "remesh"}) {
+    const std::string out = dir + "mrepair_cli_quads_" + command + ".off";
+    std::string extra = std::string(command) == "close-gaps" ? " --tolerance 0.01"
+                        : std::string(command) == "remesh"   ? " --edge-length 0.5"
+                                                             : "";
+    std::string cmd = std::string(MREPAIR_CLI) + " " + command + " " + in + " " + out + extra +
+                      " --quiet --report " + report + " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    Surface_mesh m;
+    ASSERT_EQ(mrepair::read_polygon_mesh(out, m).status, mrepair::Status::ok) << command;
+    EXPECT_TRUE(CGAL::is_triangle_mesh(m)) << command;
+    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m)) << command;
+    EXPECT_TRUE(CGAL::is_closed(m)) << command;
+    if (std::string(command) != "remesh") EXPECT_EQ(face_count(m), 16u) << command;
+    std::ifstream r(report);
+    std::string json((std::istreambuf_iterator<char>(r)), std::istreambuf_iterator<char>());
+    EXPECT_NE(json.find("\"triangulation\""), std::string::npos) << command;
+  }
+#else
+  GTEST_SKIP() << "MREPAIR_CLI not defined";
 #endif
 }
 

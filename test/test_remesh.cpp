@@ -265,6 +265,27 @@ TYPED_TEST(Remesh, face_count_within_ten_percent)
   }
 }
 
+// A stray vertex 1e19 away (fuzz finding 4) makes a sliver far thinner than
+// the target length: splits and collapses traded it back and forth for
+// minutes. The operation budget (100 per input and target face) stops it.
+TYPED_TEST(Remesh, face_count_on_a_far_sliver_keeps_to_its_budget)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  s.points = {{1.3, 0, 0},     {0.7, 0, 0},   {-9.9151249396188815e18, 3.5000001, 2},
+              {-4, -4, -3},    {-3.5, -4, -3.5}, {-3, -2.5, -4}, {-3, -2, -2.5},
+              {-4, -2.5, -2},  {-1.5, -4, -2}, {1.3, 0, 0},   {-3, -2.5, -4}};
+  s.polygons = {{2, 3, 0}, {3, 5, 0}, {4, 10, 9}, {0, 5, 6}, {7, 6, 5}, {7, 8, 6}, {1, 8, 7}};
+  Mesh m = to_mesh<Mesh>(s);
+  auto r = mrepair::remesh_to_face_count(m, 100, CGAL::parameters::number_of_iterations(3));
+  EXPECT_TRUE(r.status == mrepair::Status::ok || r.status == mrepair::Status::partial)
+      << mrepair::to_string(r.status);
+  EXPECT_LE(r.splits + r.collapses, 100u * (7 + 100));
+  if (r.status == mrepair::Status::partial) EXPECT_FALSE(r.message.empty());
+  expect_valid(m);
+  EXPECT_EQ(r.faces_after, face_count(m));
+}
+
 // A user edge map marks features; protect_constraints keeps them unsplit.
 TYPED_TEST(Remesh, user_edge_map_and_protection)
 {

@@ -16,6 +16,9 @@
 #include <mrepair/report.h>
 #include <mrepair/status.h>
 
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/boost/graph/helpers.h>
+
 #include <chrono>
 #include <string>
 #include <vector>
@@ -92,6 +95,32 @@ bool save_mesh(const std::string& path, const PolygonMesh& mesh, bool binary, Re
   if (r.status == Status::ok) return true;
   error = internal_io::one_line(r, path);
   return false;
+}
+
+/// triangulates the faces with more than three sides (CAD exports carry quads
+/// and n-gons; cleaning and remeshing need triangles) and adds section
+/// "triangulation" to `report` when there were any. Fails with a one-line
+/// `error` when CGAL cannot triangulate a face (the mesh stays valid).
+template <class PolygonMesh>
+bool triangulate_polygons(PolygonMesh& mesh, Report& report, std::string& error)
+{
+  std::size_t polygons = 0;
+  for (auto f : faces(mesh))
+    if (CGAL::halfedges_around_face(halfedge(f, mesh), mesh).size() != 3) ++polygons;
+  if (polygons == 0) return true;
+  const std::size_t before = static_cast<std::size_t>(faces(mesh).size());
+  const bool ok = CGAL::Polygon_mesh_processing::triangulate_faces(mesh);
+  Report& s = report.section("triangulation");
+  s.add("polygons", polygons);
+  s.add("faces_before", before);
+  s.add("faces_after", static_cast<std::size_t>(faces(mesh).size()));
+  s.add("complete", ok);
+  if (!ok || !CGAL::is_triangle_mesh(mesh)) {
+    error = "some of the " + std::to_string(polygons) + " polygons with more than three sides "
+            "could not be triangulated";
+    return false;
+  }
+  return true;
 }
 
 /// writes a polygon soup like `save_mesh`.

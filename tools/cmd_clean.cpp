@@ -2,6 +2,7 @@
 // `mrepair clean INPUT OUTPUT`: the RameshCleaner pipeline on a manifold
 // triangle mesh, one progress line per step.
 #include "cli.h"
+#include "cli_io.h"
 
 #include <mrepair/clean_scan_mesh.h>
 #include <mrepair/io.h>
@@ -99,6 +100,11 @@ int run_clean(int argc, char** argv)
   points.clear();
   polygons.clear();
   if (!quiet) std::cerr << "  read: " << std::to_string(t_read).substr(0, 6) << " s\n";
+  std::string error;
+  if (!cli::triangulate_polygons(mesh, report, error)) {
+    cli::emit_report(a, report);
+    return cli::fail(a.positional[0] + ": " + error);
+  }
 
   auto np = MP::clean_steps(
       mask, MP::max_hole_vertices(

@@ -1,13 +1,13 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
 // mrepair close-gaps INPUT OUTPUT --tolerance T [--relative] [--steps K] [--lambda L] [--report R.json]
 #include "cli.h"
+#include "cli_io.h"
 
 #include <mrepair/close_gaps.h>
 #include <mrepair/io.h>
 #include <mrepair/stitch_soup.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 
 namespace {
@@ -76,7 +76,11 @@ int run(int argc, char** argv)
   } else if (!mrepair::succeeded(io.status)) {
     return mrepair::cli::fail(io.message);
   }
-  if (!CGAL::is_triangle_mesh(mesh)) CGAL::Polygon_mesh_processing::triangulate_faces(mesh);
+  {
+    std::string error;
+    if (!mrepair::cli::triangulate_polygons(mesh, report, error))
+      return mrepair::cli::fail(a.positional[0] + ": " + error);
+  }
 
   mrepair::cli::Progress_printer printer(!a.has("quiet"));
   mrepair::Gap_closing_result r;

@@ -2,6 +2,7 @@
 // mrepair remesh INPUT OUTPUT (--edge-length L | --tolerance E | --faces N)
 //                [--feature-angle A] [--iterations K] [--report R.json]
 #include "cli.h"
+#include "cli_io.h"
 
 #include <mrepair/adaptive_remesh.h>
 #include <mrepair/io.h>
@@ -47,8 +48,10 @@ int run(int argc, char** argv)
   if (!mrepair::succeeded(io.status))
     return cli::fail(a.positional[0] + ": " + mrepair::to_string(io.status) +
                      (io.message.empty() ? "" : " (" + io.message + ")"));
-  if (!CGAL::is_triangle_mesh(mesh))
-    return cli::fail(a.positional[0] + ": not a triangle mesh (triangulate it first)");
+  mrepair::Report report;
+  std::string error;
+  if (!cli::triangulate_polygons(mesh, report, error))
+    return cli::fail(a.positional[0] + ": " + error);
 
   cli::Progress_printer printer(!a.has("quiet"));
   auto np = mrepair::parameters::remesh_feature_angle(angle > 0 ? angle : -1.)
@@ -82,7 +85,6 @@ int run(int argc, char** argv)
               : mrepair::remesh_to_face_count<CGAL::Parallel_if_available_tag>(mesh, std::size_t(n), np);
     }
   });
-  mrepair::Report report;
   report.add("input", a.positional[0]);
   report.add("output", a.positional[1]);
   r.to_report(report.section("remesh"));

@@ -3,6 +3,7 @@
 // soup to manifold mesh (when the input is not one), gap closing (when
 // asked), then the RameshCleaner pipeline; inspection before and after.
 #include "cli.h"
+#include "cli_io.h"
 
 #include <mrepair/clean_scan_mesh.h>
 #include <mrepair/close_gaps.h>
@@ -118,6 +119,13 @@ int run_repair(int argc, char** argv)
   }
   points.clear();
   polygons.clear();
+  {
+    std::string error;
+    if (!cli::triangulate_polygons(mesh, report, error)) {
+      cli::emit_report(a, report);
+      return cli::fail(a.positional[0] + ": " + error);
+    }
+  }
 
   // 2. Gap closing, when asked.
   if (gap > 0.) {

@@ -253,6 +253,10 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
           perimeters += remesh::len(rf.points[t[(k + 1) % 3]] - rf.points[t[k]]);
       L = std::max(L, perimeters / (200. * N));
       const std::size_t outside = whole ? 0 : res.faces_before - rf.triangles.size();
+      // Surfaces far thinner than L in one direction (a stray far vertex) make
+      // splits and collapses undo each other without converging: a budget of
+      // ~100 operations per input and output face bounds the time.
+      R.set_operation_budget(100 * (rf.triangles.size() + static_cast<std::size_t>(N)));
       R.set_uniform(L);
       st = R.run(std::max(iterations, 1), project, vis);
       for (int round = 0; round < 6 && st == Status::ok; ++round) {
@@ -264,7 +268,7 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
       }
       res.target_edge_length = L;
     }
-    if (st == Status::ok || st == Status::cancelled) R.write_back();
+    if (st == Status::ok || st == Status::cancelled || st == Status::partial) R.write_back();
     if (has_ecm)
       for (edge_descriptor e : edges(tm)) put(ecm, e, R.is_feature(e));
     res.iterations = R.counters.iterations;
@@ -276,6 +280,9 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
   if (whole) remesh_collect_garbage(tm);
   res.status = st;
   if (st == Status::cancelled) res.message = "cancelled by the visitor; the mesh is valid";
+  if (st == Status::partial)
+    res.message = "operation budget spent before reaching the face count (surface too thin or "
+                  "anisotropic for the target); the mesh is valid";
   res.faces_after = static_cast<std::size_t>(faces(tm).size());
   res.vertices_after = static_cast<std::size_t>(vertices(tm).size());
   return res;
@@ -370,7 +377,9 @@ Remeshing_result adaptive_remesh(const FaceRange& face_range, TriangleMesh& tm, 
 /// \ingroup mrepair_remesh
 /// uniform remeshing to about `target_faces` faces (within 10% on closed smooth
 /// shapes): L is estimated from the area, then corrected from the face count
-/// reached, 3 more iterations per correction.
+/// reached, 3 more iterations per correction. Splits plus collapses are capped
+/// at 100 per input and per target face: a surface far thinner than the target
+/// length in one direction returns `partial` (valid mesh, count not reached).
 /// \param np as `isotropic_remesh`
 template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh,
           typename CGAL_NP_TEMPLATE_PARAMETERS>

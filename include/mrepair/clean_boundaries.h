@@ -3,6 +3,7 @@
 #define MREPAIR_CLEAN_BOUNDARIES_H
 
 #include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+#include <mrepair/internal/coordinate_range.h>
 #include <mrepair/parameters.h>
 #include <mrepair/remove_small_components.h>
 #include <mrepair/report.h>
@@ -209,7 +210,8 @@ std::size_t smooth_boundary_ring(PM& pm, const VPM& vpm, std::size_t iterations,
 ///   - `visitor`: phase "clean_boundaries"; `stop_requested()` polled between rounds
 /// \return `Boundary_cleaning_result`: status `ok`, `partial` (round cap hit
 ///   with bad vertices left), `non_finite_input` (a region vertex has a
-///   non-finite coordinate; mesh untouched), `invalid_parameter`, `cancelled`
+///   non-finite coordinate, or the coordinates span more than 1e100; mesh
+///   untouched), `invalid_parameter`, `cancelled`
 template <typename PolygonMesh,
           typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Boundary_cleaning_result clean_boundaries(
@@ -240,6 +242,10 @@ Boundary_cleaning_result clean_boundaries(
   Boundary_cleaning_result r;
   if (!(max_angle >= 0. && max_angle <= 180.) || !(step >= 0. && step <= 1.)) {
     r.status = Status::invalid_parameter;
+    return r;
+  }
+  if (internal::coordinates_too_large(pmesh, vpm)) {
+    r.status = Status::non_finite_input;
     return r;
   }
 

@@ -5,6 +5,7 @@
 #include <mrepair/clean_boundaries.h>
 #include <mrepair/fill_small_holes.h>
 #include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+#include <mrepair/internal/coordinate_range.h>
 #include <mrepair/internal/clean_scan_mesh/spike_steps.h>
 #include <mrepair/parameters.h>
 #include <mrepair/remove_small_components.h>
@@ -238,7 +239,8 @@ inline void add_totals(Hole_filling_result& a, const Hole_filling_result& b)
 /// \return `Scan_cleaning_result`: status `ok`, `partial` (small holes left
 ///   open or a step left defects), `empty_input`, `invalid_mesh` (not a
 ///   triangle mesh; untouched), `non_finite_input` (non-finite coordinates with
-///   the preprocessing step disabled; untouched), `invalid_parameter`,
+///   the preprocessing step disabled, or finite ones spanning more than 1e100;
+///   untouched), `invalid_parameter`,
 ///   `cancelled` (the mesh is valid)
 template <typename PolygonMesh,
           typename NamedParameters = CGAL::parameters::Default_named_parameters>
@@ -293,6 +295,9 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
   if (r.vertices_before == 0) return finish(Status::empty_input, "the mesh has no vertex");
   if (!CGAL::is_triangle_mesh(pmesh))
     return finish(Status::invalid_mesh, "clean_scan_mesh needs a triangle mesh");
+  // NaN vertices are removed below; finite ones must stay in range
+  if (internal::coordinates_too_large(pmesh, vpm))
+    return finish(Status::non_finite_input, internal::coordinates_too_large_message);
 
   SC::Forwarding_visitor<Handle> fwd(&visitor);
   using Spikes = SC::Spike_steps<PolygonMesh, decltype(vpm)>;

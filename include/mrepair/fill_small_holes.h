@@ -3,6 +3,7 @@
 #define MREPAIR_FILL_SMALL_HOLES_H
 
 #include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+#include <mrepair/internal/coordinate_range.h>
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
 #include <mrepair/status.h>
@@ -496,7 +497,8 @@ public:
 ///     restrict Liepa's search to the edges of a 3D Delaunay triangulation
 ///   - `visitor`: phase "fill_small_holes"; `stop_requested()` polled between holes
 /// \return `Hole_filling_result`; status `ok`, `partial` (small holes left
-///   open, listed with their reason), `invalid_parameter` or `cancelled`
+///   open, listed with their reason), `invalid_parameter`, `non_finite_input`
+///   (coordinates spanning more than 1e100; untouched) or `cancelled`
 template <typename PolygonMesh,
           typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Hole_filling_result fill_small_holes(PolygonMesh& pmesh,
@@ -520,6 +522,11 @@ Hole_filling_result fill_small_holes(PolygonMesh& pmesh,
   if (!(density > 0.) || !std::isfinite(density)) {
     Hole_filling_result r;
     r.status = Status::invalid_parameter;
+    return r;
+  }
+  if (internal::coordinates_too_large(pmesh, vpm)) {
+    Hole_filling_result r;
+    r.status = Status::non_finite_input;
     return r;
   }
   auto observer = internal::clean_pipeline::edit_observer(np);

@@ -346,8 +346,9 @@ public:
     if (nn > 0 && std::isfinite(nn)) fs.normal = Vec{{n[0] / nn, n[1] / nn, n[2] / nn}};
     fs.barycenter = Vec{{(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3}};
     // corner angles: at c opposite h0 (a->b), at a opposite h1, at b opposite h2
-    // two corners by atan2, the third as pi minus their sum (atan2 dominates the pass)
-    const double aa = angle(ab, neg(ca)), ab_ = angle(bc, neg(ab));
+    // two corners by atan2, the third as pi minus their sum (atan2 dominates the
+    // pass); |u x v| is twice the area at every corner, so nn serves all three
+    const double aa = std::atan2(nn, -dot(ab, ca)), ab_ = std::atan2(nn, -dot(bc, ab));
     const double ac = (std::max)(0., 3.14159265358979323846 - aa - ab_);
     set_opposite_angle(h0, ac);
     set_opposite_angle(h1, aa);

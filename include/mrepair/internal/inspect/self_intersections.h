@@ -131,8 +131,12 @@ public:
     double h = 2.0 * tot.extent / double(n);
     for (int d = 0; d < 3; ++d) h = std::max(h, (tot.hi[d] - tot.lo[d]) / double(1 << 20));
     if (!(h > 0)) h = 1.0;
+    // Finite coordinates near +-DBL_MAX make ranges overflow to inf and h too;
+    // the clamp keeps the cell index defined (everything then shares a cell).
     auto cell = [&](double x, int d) {
-      return static_cast<std::uint64_t>(std::floor((x - tot.lo[d]) / h));
+      const double t = std::floor((x - tot.lo[d]) / h);
+      if (!(t > 0)) return std::uint64_t(0);
+      return static_cast<std::uint64_t>(std::min(t, double(1 << 20)));
     };
     auto key = [](std::uint64_t i, std::uint64_t j, std::uint64_t k) { return (i << 42) | (j << 21) | k; };
 

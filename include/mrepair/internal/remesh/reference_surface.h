@@ -57,6 +57,8 @@ class Reference_surface
 
   Tri_vec tri_geo_;
   Seg_vec seg_geo_;
+  std::vector<int> tri_of_prim_, prim_of_tri_;  // tree primitive <-> triangle index
+  std::vector<int> seg_of_prim_, prim_of_seg_;
   std::unique_ptr<Tri_tree> tri_tree_;
   std::unique_ptr<Seg_tree> seg_tree_;
 
@@ -87,13 +89,34 @@ public:
       for (std::size_t i = 0; i < triangles.size(); ++i)
         for (int k = 0; k < 3; ++k) star[fill[triangles[i][k]]++] = static_cast<int>(i);
     }
+    // Triangles and segments so small that the trees' closest-point
+    // constructions would divide underflowed squares (|n|^2 below ~1e-290:
+    // edges under ~1e-72) are left out: they produced NaN, which the exact
+    // fallback of the distance comparison turned into SIGFPE. Their points lie
+    // on their neighbours, and the local descent still visits them.
+    const double tiny = 1e-290;
     tri_geo_.clear();
-    tri_geo_.reserve(triangles.size());
-    for (const auto& t : triangles)
+    tri_of_prim_.clear();
+    prim_of_tri_.assign(triangles.size(), -1);
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+      const auto& t = triangles[i];
+      const Vec3& a = points[t[0]];
+      const Vec3 n = cross(points[t[1]] - a, points[t[2]] - a);
+      if (!(sqlen(n) > tiny)) continue;
+      prim_of_tri_[i] = static_cast<int>(tri_geo_.size());
+      tri_of_prim_.push_back(static_cast<int>(i));
       tri_geo_.emplace_back(kp(points[t[0]]), kp(points[t[1]]), kp(points[t[2]]));
+    }
     seg_geo_.clear();
-    seg_geo_.reserve(segments.size());
-    for (const auto& s : segments) seg_geo_.emplace_back(kp(points[s[0]]), kp(points[s[1]]));
+    seg_of_prim_.clear();
+    prim_of_seg_.assign(segments.size(), -1);
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+      const auto& sg = segments[i];
+      if (!(sqlen(points[sg[1]] - points[sg[0]]) > tiny)) continue;
+      prim_of_seg_[i] = static_cast<int>(seg_geo_.size());
+      seg_of_prim_.push_back(static_cast<int>(i));
+      seg_geo_.emplace_back(kp(points[sg[0]]), kp(points[sg[1]]));
+    }
     tri_tree_.reset();
     seg_tree_.reset();
     if (!tri_geo_.empty()) {
@@ -191,11 +214,11 @@ public:
   /// closest point by the AABB tree; `hint` gets the triangle found.
   Vec3 project_surface_tree(const Vec3& q, double& size, int& hint) const
   {
-    auto pp = hint >= 0 && hint < int(triangles.size())
-                  ? tri_tree_->closest_point_and_primitive(
-                        kp(q), std::make_pair(kp(points[triangles[hint][0]]), tri_geo_.cbegin() + hint))
-                  : tri_tree_->closest_point_and_primitive(kp(q));
-    std::size_t i = static_cast<std::size_t>(pp.second - tri_geo_.cbegin());
+    const int ph = hint >= 0 && hint < int(triangles.size()) ? prim_of_tri_[hint] : -1;
+    auto pp = ph >= 0 ? tri_tree_->closest_point_and_primitive(
+                            kp(q), std::make_pair(tri_geo_[ph].vertex(0), tri_geo_.cbegin() + ph))
+                      : tri_tree_->closest_point_and_primitive(kp(q));
+    std::size_t i = static_cast<std::size_t>(tri_of_prim_[pp.second - tri_geo_.cbegin()]);
     hint = static_cast<int>(i);
     Vec3 p = vp(pp.first);
     const auto& t = triangles[i];
@@ -220,11 +243,11 @@ public:
   /// closest point of the input feature/boundary polylines to `q`.
   Vec3 project_line(const Vec3& q, double& size, int& hint) const
   {
-    auto pp = hint >= 0 && hint < int(segments.size())
-                  ? seg_tree_->closest_point_and_primitive(
-                        kp(q), std::make_pair(kp(points[segments[hint][0]]), seg_geo_.cbegin() + hint))
-                  : seg_tree_->closest_point_and_primitive(kp(q));
-    std::size_t i = static_cast<std::size_t>(pp.second - seg_geo_.cbegin());
+    const int ph = hint >= 0 && hint < int(segments.size()) ? prim_of_seg_[hint] : -1;
+    auto pp = ph >= 0 ? seg_tree_->closest_point_and_primitive(
+                            kp(q), std::make_pair(seg_geo_[ph].source(), seg_geo_.cbegin() + ph))
+                      : seg_tree_->closest_point_and_primitive(kp(q));
+    std::size_t i = static_cast<std::size_t>(seg_of_prim_[pp.second - seg_geo_.cbegin()]);
     hint = static_cast<int>(i);
     Vec3 p = vp(pp.first);
     const auto& s = segments[i];

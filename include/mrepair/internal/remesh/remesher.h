@@ -106,6 +106,7 @@ class Remesher
   double collapse_cos_ = 0.2;  // collapse rejected when a face normal turns more than ~78 deg
   bool relax_lines_ = true;
   double bad_angle_ = 20.;  // degrees: faces below it get the cleanup pass
+  std::size_t op_budget_ = 0;  // splits + collapses allowed in all; 0: no limit
 
 public:
   Counters counters;
@@ -127,6 +128,12 @@ public:
 
   const Reference_surface& reference() const { return ref; }
   void set_relax_lines(bool b) { relax_lines_ = b; }
+  /// caps the splits plus collapses of all runs; `run` returns `partial` once spent
+  void set_operation_budget(std::size_t n) { op_budget_ = n; }
+  bool budget_spent() const
+  {
+    return op_budget_ != 0 && counters.splits + counters.collapses >= op_budget_;
+  }
 
   /// classifies edges and vertices and builds the reference surface.
   /// `in_part(f)`: f belongs to the remeshed part; `is_feature(e)`: user or
@@ -314,7 +321,10 @@ public:
       }
       if (cand.empty()) break;
       // splits leave the other candidates' end points unchanged
-      for (halfedge_descriptor h : cand) split(h);
+      for (halfedge_descriptor h : cand) {
+        if (budget_spent()) return;
+        split(h);
+      }
     }
   }
 
@@ -457,6 +467,7 @@ public:
 
   bool try_collapse(halfedge_descriptor h)
   {
+    if (budget_spent()) return false;
     edge_descriptor e = edge(h, tm_);
     if (get(flag_, e) & FROZEN) return false;
     halfedge_descriptor cands[2] = {h, opposite(h, tm_)};
@@ -482,6 +493,7 @@ public:
       if (sqlength(h) < lo * lo) cand.push_back(h);
     }
     for (halfedge_descriptor h : cand) {
+      if (budget_spent()) return;
       if (get(dead_, h) == stamp_) continue;  // removed or changed by an earlier collapse
       double lo = 4. / 5. * tsize(source(h, tm_), target(h, tm_));
       if (sqlength(h) >= lo * lo) continue;
@@ -859,7 +871,9 @@ public:
     }
   }
 
-  /// runs `iterations` rounds; `stop()` is polled between phases.
+  /// runs `iterations` rounds; `stop()` is polled between phases. Returns
+  /// `partial` when the operation budget ran out (the mesh stays valid but
+  /// has not reached its target), `cancelled` on a stop request.
   template <typename Visitor>
   Status run(int iterations, bool project, Visitor& vis)
   {
@@ -873,6 +887,11 @@ public:
       collapse_short_edges();
       vis.end_phase("collapse");
       if (vis.stop_requested()) return Status::cancelled;
+      if (budget_spent()) {
+        // the last relaxation puts the vertices back on the input surface
+        relax_and_project(project);
+        return Status::partial;
+      }
       vis.start_phase("flip");
       flip_edges();
       vis.end_phase("flip");

@@ -5,6 +5,7 @@
 #define MREPAIR_INTERNAL_SCAN_CLEAN_COMMON_H
 
 #include <mrepair/geometric_statistics.h>
+#include <mrepair/internal/coordinate_range.h>
 #include <mrepair/status.h>
 
 #include <CGAL/boost/graph/helpers.h>
@@ -41,7 +42,8 @@ void parallel_for_index(std::size_t n, const F& f)
 }
 
 // Checks what every scan-cleaning call needs: a triangle mesh with finite
-// coordinates. Returns ok, empty_input, invalid_mesh or non_finite_input.
+// coordinates within `max_bbox_diagonal`. Returns ok, empty_input,
+// invalid_mesh or non_finite_input.
 template <typename Mesh, typename VPM>
 Status check_input(const Mesh& m, const VPM& vpm, std::string& message)
 {
@@ -56,6 +58,10 @@ Status check_input(const Mesh& m, const VPM& vpm, std::string& message)
       message = "a vertex has a non-finite coordinate";
       return Status::non_finite_input;
     }
+  }
+  if (coordinates_too_large(m, vpm)) {
+    message = coordinates_too_large_message;
+    return Status::non_finite_input;
   }
   if (!CGAL::is_triangle_mesh(m)) {
     message = "the mesh is not triangulated";
