@@ -787,6 +787,34 @@ TYPED_TEST(Clean_pipeline, pipeline_on_a_dirty_sphere)
   EXPECT_NE(rep.to_json().find("fill_small_holes"), std::string::npos);
 }
 
+// The pipeline reserves room for its fills up front (3% of the faces + 1024)
+// so that the statistics' maps are not reallocated; fills that need more grow
+// the mesh and those maps as before.
+TYPED_TEST(Clean_pipeline, fills_beyond_the_reserved_room)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = punched(grid(30, 30, 0.5), 30, 10, 10, 8, 8);  // 32-vertex loop, edges 0.5
+  Mesh m = to_mesh<Mesh>(compacted(s));
+  const std::size_t f0 = face_count(m);
+  auto r = mrepair::clean_scan_mesh(m, MP::hole_density_factor(0.25));
+  EXPECT_EQ(r.status, mrepair::Status::ok) << r.message;
+  EXPECT_GE(r.holes.holes_filled, 1u);
+  EXPECT_GT(face_count(m), f0 + f0 / 32 + 1024);
+  EXPECT_EQ(border_loops(m), 1u);  // the grid's outline only
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(all_finite(m));
+
+  // A dense patch (about 8,500 faces for a 24-vertex loop): its short edges
+  // are collapsed in sorted batches (a rescan per collapse took 17 s here).
+  Mesh d = to_mesh<Mesh>(compacted(punched(grid(30, 30, 0.5), 30, 10, 10, 6, 6)));
+  const std::size_t d0 = face_count(d);
+  auto h = mrepair::fill_small_holes(d, MP::hole_density_factor(0.1));
+  EXPECT_EQ(h.holes_filled, 1u);
+  EXPECT_GT(face_count(d), d0 + 5000);
+  EXPECT_EQ(border_loops(d), 1u);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(d));
+}
+
 TYPED_TEST(Clean_pipeline, pipeline_steps_can_be_disabled)
 {
   using Mesh = typename TypeParam::Mesh;

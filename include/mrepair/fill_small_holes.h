@@ -24,6 +24,7 @@
 #include <set>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 /// \file fill_small_holes.h
@@ -270,28 +271,66 @@ public:
         ++splits;
       }
       // Collapse short edges at new vertices (the splits of fan-shaped
-      // initial triangulations crowd vertices). One at a time, then rescan:
-      // a collapse removes halfedges a stored list could still hold.
-      std::size_t collapses = 0;
-      while (collapses < 4 * patch.size()) {
-        halfedge_descriptor best = GT::null_halfedge();
-        double best_len = low2;
-        for (face_descriptor f : patch)
-          for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, pm_), pm_))
-            if (interior(h) && sqlen(h) < best_len &&
-                (added_set.count(source(h, pm_)) || added_set.count(target(h, pm_))) &&
-                can_collapse(h, L, added_set)) {
-              best = h;
-              best_len = sqlen(h);
-            }
-        if (best == GT::null_halfedge()) break;
-        collapse(best, added_set, in, loop);
-        patch.assign(in.begin(), in.end());
-        ++collapses;
-      }
+      // initial triangulations crowd vertices), shortest first.
+      const std::size_t collapses =
+          collapse_short_edges(patch, in, L, low2, added_set, loop, interior, sqlen);
       added.assign(added_set.begin(), added_set.end());
       if (splits == 0 && collapses == 0) break;
     }
+  }
+
+  // Collapses interior patch edges shorter than `low2` (squared) with a new
+  // vertex at one end, shortest first, in batches: a batch lists the
+  // candidates once and sorts them, so that a dense patch costs
+  // O(n log n) per batch instead of a rescan of the patch per collapse
+  // (a 24-vertex hole filled at density factor 0.1, about 8,500 faces, took
+  // 17 s with rescans). Candidates are kept as vertex pairs and looked up
+  // again: a collapse frees halfedges (on Polyhedron_3) and one vertex, whose
+  // handle is only compared afterwards, never dereferenced.
+  template <typename Interior, typename Sqlen>
+  std::size_t collapse_short_edges(std::vector<face_descriptor>& patch,
+                                   std::set<face_descriptor>& in, double L, double low2,
+                                   std::set<vertex_descriptor>& added_set,
+                                   std::vector<vertex_descriptor>& loop, const Interior& interior,
+                                   const Sqlen& sqlen)
+  {
+    using Candidate = std::pair<double, std::pair<vertex_descriptor, vertex_descriptor>>;
+    const std::size_t cap = 4 * patch.size();
+    std::size_t total = 0;
+    std::vector<Candidate> candidates;
+    std::set<vertex_descriptor> gone;
+    while (total < cap) {
+      candidates.clear();
+      for (face_descriptor f : patch)
+        for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, pm_), pm_)) {
+          const vertex_descriptor a = source(h, pm_), b = target(h, pm_);
+          if (h < opposite(h, pm_) && interior(h) && sqlen(h) < low2 &&
+              (added_set.count(a) || added_set.count(b)))
+            candidates.push_back(Candidate(sqlen(h), std::make_pair(a, b)));
+        }
+      std::sort(candidates.begin(), candidates.end(),
+                [](const Candidate& x, const Candidate& y) { return x.first < y.first; });
+      gone.clear();
+      std::size_t batch = 0;
+      for (const Candidate& c : candidates) {
+        if (total >= cap) break;
+        const vertex_descriptor a = c.second.first, b = c.second.second;
+        if (gone.count(a) || gone.count(b)) continue;
+        const auto found = halfedge(a, b, pm_);
+        if (!found.second) continue;
+        const halfedge_descriptor h = found.first;
+        if (!interior(h) || !(sqlen(h) < low2) || !(added_set.count(a) || added_set.count(b)) ||
+            !can_collapse(h, L, added_set))
+          continue;
+        const vertex_descriptor kept = collapse(h, added_set, in, loop);
+        gone.insert(kept == a ? b : a);
+        ++batch;
+        ++total;
+      }
+      if (batch == 0) break;
+      patch.assign(in.begin(), in.end());
+    }
+    return total;
   }
 
   // Position of the vertex kept when `h`'s edge collapses: an original
@@ -334,8 +373,9 @@ public:
 
   // `loop` lists the loop's vertices: when the collapse keeps the new vertex
   // (CGAL keeps target(halfedge(e))), it takes the original's place there.
-  void collapse(halfedge_descriptor h, std::set<vertex_descriptor>& added_set,
-                std::set<face_descriptor>& in, std::vector<vertex_descriptor>& loop)
+  // Returns the vertex kept.
+  vertex_descriptor collapse(halfedge_descriptor h, std::set<vertex_descriptor>& added_set,
+                             std::set<face_descriptor>& in, std::vector<vertex_descriptor>& loop)
   {
     const Vec3 p = collapse_point(h, added_set);
     const vertex_descriptor a = source(h, pm_), b = target(h, pm_);
@@ -351,6 +391,7 @@ public:
       added_set.insert(v);  // two new vertices merged: still new
     else if (v != original)
       std::replace(loop.begin(), loop.end(), original, v);
+    return v;
   }
 
   bool try_flip(halfedge_descriptor h)
