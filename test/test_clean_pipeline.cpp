@@ -79,6 +79,14 @@ Soup compacted(const Soup& s)
   return out;
 }
 
+// A 30 x 30 grid with edges 0.5 and a side x side square hole at (10, 10):
+// a loop of 4 side vertices; the outline is a loop of 120.
+template <class Mesh>
+Mesh grid_with_square_hole(std::size_t side)
+{
+  return to_mesh<Mesh>(compacted(punched(grid(30, 30, 0.5), 30, 10, 10, side, side)));
+}
+
 template <class Mesh>
 std::size_t border_loops(const Mesh& m, std::vector<std::size_t>* sizes = nullptr)
 {
@@ -293,8 +301,7 @@ TYPED_TEST(Clean_pipeline, removal_never_leaves_a_pinched_vertex)
 TYPED_TEST(Clean_pipeline, small_hole_patch_matches_the_surrounding_density)
 {
   using Mesh = typename TypeParam::Mesh;
-  Soup s = punched(grid(30, 30, 0.5), 30, 10, 10, 6, 6);  // 24-vertex loop, edges 0.5
-  Mesh m = to_mesh<Mesh>(compacted(s));
+  Mesh m = grid_with_square_hole<Mesh>(6);  // 24-vertex loop, edges 0.5
   const std::size_t f0 = face_count(m);
   auto r = mrepair::fill_small_holes(m, MP::max_hole_vertices(100));
   EXPECT_EQ(r.holes_filled, 1u);
@@ -325,7 +332,7 @@ TYPED_TEST(Clean_pipeline, small_hole_patch_matches_the_surrounding_density)
   EXPECT_LT(mx, 0.5 * 4. / 3. + 0.05);
 
   // Denser patches with a density factor below 1.
-  Mesh m2 = to_mesh<Mesh>(compacted(s));
+  Mesh m2 = grid_with_square_hole<Mesh>(6);
   auto r2 = mrepair::fill_small_holes(m2, MP::hole_density_factor(0.5));
   EXPECT_EQ(r2.holes_filled, 1u);
   EXPECT_GT(face_count(m2) - f0, 2 * added);
@@ -793,8 +800,7 @@ TYPED_TEST(Clean_pipeline, pipeline_on_a_dirty_sphere)
 TYPED_TEST(Clean_pipeline, fills_beyond_the_reserved_room)
 {
   using Mesh = typename TypeParam::Mesh;
-  Soup s = punched(grid(30, 30, 0.5), 30, 10, 10, 8, 8);  // 32-vertex loop, edges 0.5
-  Mesh m = to_mesh<Mesh>(compacted(s));
+  Mesh m = grid_with_square_hole<Mesh>(8);  // 32-vertex loop
   const std::size_t f0 = face_count(m);
   auto r = mrepair::clean_scan_mesh(m, MP::hole_density_factor(0.25));
   EXPECT_EQ(r.status, mrepair::Status::ok) << r.message;
@@ -806,7 +812,7 @@ TYPED_TEST(Clean_pipeline, fills_beyond_the_reserved_room)
 
   // A dense patch (about 8,500 faces for a 24-vertex loop): its short edges
   // are collapsed in sorted batches (a rescan per collapse took 17 s here).
-  Mesh d = to_mesh<Mesh>(compacted(punched(grid(30, 30, 0.5), 30, 10, 10, 6, 6)));
+  Mesh d = grid_with_square_hole<Mesh>(6);
   const std::size_t d0 = face_count(d);
   auto h = mrepair::fill_small_holes(d, MP::hole_density_factor(0.1));
   EXPECT_EQ(h.holes_filled, 1u);
