@@ -1,11 +1,15 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
-// `mrepair repair INPUT OUTPUT`: the whole job for a scanned mesh file:
-// soup to manifold mesh (when the input is not one), gap closing (when
-// asked), then the RameshCleaner pipeline; inspection before and after.
+// `mrepair repair INPUT OUTPUT`: the whole job for a mesh file: soup to
+// manifold mesh (when the input is not one), gap closing (when asked), then
+// the cleaning pipeline with the steps of the input's profile (a scan gets
+// RameshCleaner, a CAD export or print model keeps its geometry and parts
+// and gets its holes closed), then the validity check; inspection before and
+// after, and a face accounting that reconciles.
 #include "cli.h"
 #include "cli_io.h"
 
 #include <mrepair/clean_scan_mesh.h>
+#include <mrepair/input_profile.h>
 #include <mrepair/close_gaps.h>
 #include <mrepair/inspect.h>
 #include <mrepair/io.h>
@@ -28,10 +32,11 @@ namespace cli = mrepair::cli;
 const std::vector<cli::Option>& repair_options()
 {
   static const std::vector<cli::Option> o = {
+      {"profile", true, "auto|scan|cad: which cleaning steps apply (auto: decided from the mesh)"},
       {"close-gaps", true, "close boundary gaps narrower than T (model units; 0: off)"},
       {"merge-epsilon", true, "merge soup points closer than E before stitching (0)"},
       {"spike-angle", true, "dihedral angle (degrees) of a spiked vertex (relax_spikes default)"},
-      {"max-hole", true, "holes with fewer boundary vertices are filled (100)"},
+      {"max-hole", true, "holes with fewer boundary vertices are filled (100 scan, 500 cad)"},
       {"min-component", true, "components with fewer faces are removed (400)"},
       {"iterations", true, "cleaning iteration cap (5)"},
       {"no-self-intersections", false, "do not count self-intersections in the inspections"},
@@ -70,6 +75,9 @@ int run_repair(int argc, char** argv)
             iterations = a.get_int("iterations", 5);
   if (max_hole < 1 || min_comp < 1 || iterations < 0)
     throw cli::Usage_error("--max-hole and --min-component must be >= 1, --iterations >= 0");
+  mrepair::Input_profile profile = mrepair::Input_profile::automatic;
+  if (a.has("profile") && !mrepair::parse_input_profile(a.get("profile"), profile))
+    throw cli::Usage_error("--profile must be auto, scan or cad");
   const bool quiet = a.has("quiet") || a.has("json");
   const bool count_si = !a.has("no-self-intersections");
   const std::size_t hole_n = static_cast<std::size_t>(max_hole),
@@ -94,6 +102,12 @@ int run_repair(int argc, char** argv)
   before.to_report(report.section("before"));
   print_inspection("before", before, quiet);
 
+  // Face accounting over the whole job, in triangles: each stage adds what
+  // it removed and added, by reason.
+  std::size_t faces_in = 0;
+  std::vector<std::pair<std::string, std::size_t>> removed, added;
+  for (const auto& poly : polygons) faces_in += poly.size() >= 3 ? poly.size() - 2 : 1;
+
   // 1. A manifold mesh, built directly when the soup already is one.
   Mesh mesh;
   const bool direct = in.status == mrepair::Status::ok &&
@@ -111,6 +125,11 @@ int run_repair(int argc, char** argv)
     mrepair::Report& sr = report.section("soup_to_manifold");
     sr.add("needed", true);
     s.to_report(sr);
+    removed.emplace_back("soup_invalid_index", s.removed_invalid_index);
+    removed.emplace_back("soup_non_finite", s.removed_non_finite);
+    removed.emplace_back("soup_degenerate", s.removed_degenerate_index + s.removed_collinear);
+    removed.emplace_back("soup_duplicate", s.removed_duplicate);
+    faces_in = s.faces_in;  // the soup stage's count (triangles of distinct corners) rules
     if (!mrepair::succeeded(s.status)) {
       cli::emit_report(a, report);
       return cli::fail("soup_to_manifold: " + std::string(mrepair::to_string(s.status)) +
@@ -130,10 +149,15 @@ int run_repair(int argc, char** argv)
   // 2. Gap closing, when asked.
   if (gap > 0.) {
     mrepair::Gap_closing_result g;
+    const std::size_t f0 = static_cast<std::size_t>(faces(mesh).size());
     {
       mrepair::internal::Phase_scope<cli::Progress_printer> phase(printer, "close_gaps");
       g = mrepair::close_gaps(mesh, gap);
     }
+    const std::size_t f1 = static_cast<std::size_t>(faces(mesh).size());
+    // vertex-edge contractions split the faces they land on
+    if (f1 > f0) added.emplace_back("close_gaps_splits", f1 - f0);
+    if (f0 > f1) removed.emplace_back("close_gaps", f0 - f1);
     g.to_report(report.section("close_gaps"));
     if (!mrepair::succeeded(g.status)) {
       cli::emit_report(a, report);
@@ -141,18 +165,45 @@ int run_repair(int argc, char** argv)
     }
   }
 
-  // 3. The cleaning pipeline.
-  mrepair::Scan_cleaning_result c = mrepair::clean_scan_mesh(
-      mesh, MP::max_hole_vertices(
-                hole_n, MP::min_component_faces(
-                            comp_n, MP::max_clean_iterations(static_cast<std::size_t>(iterations),
-                                                             MP::spike_angle(spike))))
-                .visitor(std::ref(printer)));
+  // 3. The cleaning pipeline, with the steps of the input's profile.
+  auto clean = [&](const auto& np) {
+    return mrepair::clean_scan_mesh(
+        mesh, MP::min_component_faces(
+                  comp_n, MP::max_clean_iterations(
+                              static_cast<std::size_t>(iterations),
+                              MP::spike_angle(spike, MP::input_profile(profile, np))))
+                  .visitor(std::ref(printer)));
+  };
+  // without --max-hole the profile picks the limit
+  mrepair::Scan_cleaning_result c = a.has("max-hole")
+                                        ? clean(MP::max_hole_vertices(hole_n))
+                                        : clean(CGAL::parameters::default_values());
   c.to_report(report.section("clean"));
+  if (!quiet)
+    std::cerr << "profile: " << mrepair::to_string(c.profile.profile)
+              << (c.profile.chosen_by_user ? " (chosen)" : "") << ": " << c.profile.reason << "\n";
   if (!mrepair::succeeded(c.status) && c.status != mrepair::Status::empty_input) {
     cli::emit_report(a, report);
     return cli::fail("clean: " + std::string(mrepair::to_string(c.status)) +
                      (c.message.empty() ? "" : ": " + c.message));
+  }
+  for (std::size_t i = 0; i < mrepair::number_of_clean_steps; ++i) {
+    if (c.steps[i].faces_removed) removed.emplace_back(mrepair::clean_step_name(i), c.steps[i].faces_removed);
+    if (c.steps[i].faces_added) added.emplace_back(mrepair::clean_step_name(i), c.steps[i].faces_added);
+  }
+  {
+    const std::size_t faces_out = static_cast<std::size_t>(faces(mesh).size());
+    std::size_t rm = 0, ad = 0;
+    mrepair::Report& fa = report.section("face_accounting");
+    fa.add("faces_in", faces_in);
+    fa.add("faces_out", faces_out);
+    mrepair::Report& rs = fa.section("removed");
+    for (const auto& x : removed)
+      if (x.second) { rs.add(x.first, x.second); rm += x.second; }
+    mrepair::Report& as = fa.section("added");
+    for (const auto& x : added)
+      if (x.second) { as.add(x.first, x.second); ad += x.second; }
+    fa.add("reconciles", faces_in + ad == faces_out + rm);
   }
 
   mrepair::Inspection_report after =
@@ -174,7 +225,9 @@ int run_repair(int argc, char** argv)
   return cli::exit_code(c.status);
 }
 
-cli::Registrar reg{{"repair", "INPUT OUTPUT [--close-gaps T] [--max-hole N] [--min-component N]",
-                    "soup to manifold, gap closing, scan cleaning: the whole job", run_repair}};
+cli::Registrar reg{{"repair",
+                    "INPUT OUTPUT [--profile auto|scan|cad] [--close-gaps T] [--max-hole N] [--min-component N]",
+                    "soup to manifold, gap closing, cleaning by input profile, validity: the whole job",
+                    run_repair}};
 
 }  // namespace

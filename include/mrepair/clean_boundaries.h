@@ -3,6 +3,7 @@
 #define MREPAIR_CLEAN_BOUNDARIES_H
 
 #include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+#include <mrepair/internal/clean_scan_mesh/safety.h>
 #include <mrepair/internal/coordinate_range.h>
 #include <mrepair/parameters.h>
 #include <mrepair/remove_small_components.h>
@@ -16,6 +17,7 @@
 #include <CGAL/boost/graph/properties.h>
 #include <CGAL/Named_function_parameters.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -30,6 +32,8 @@ MREPAIR_ADD_NAMED_PARAMETER(max_boundary_rounds)           // removal rounds (30
 MREPAIR_ADD_NAMED_PARAMETER(boundary_component_faces)      // components removed in the region (40)
 MREPAIR_ADD_NAMED_PARAMETER(boundary_smoothing_iterations) // (10)
 MREPAIR_ADD_NAMED_PARAMETER(boundary_smoothing_step)       // (0.02)
+MREPAIR_ADD_NAMED_PARAMETER(jagged_loop_turning)           // loops turning more than this x 2 pi are jagged (2)
+MREPAIR_ADD_NAMED_PARAMETER(boundary_erosion_share)        // share of a loop's region faces removable (0.5)
 
 namespace mrepair {
 
@@ -48,6 +52,9 @@ struct Boundary_cleaning_result
   std::size_t components_removed = 0;    ///< small components removed in the region
   std::size_t component_faces_removed = 0;
   std::size_t vertices_smoothed = 0;
+  std::size_t loops = 0;                 ///< boundary loops found at the start
+  std::size_t jagged_loops = 0;          ///< of which jagged: the only ones eroded
+  std::size_t loops_at_budget = 0;       ///< loops whose erosion stopped at `boundary_erosion_share`
 
   void to_report(Report& r) const
   {
@@ -62,6 +69,9 @@ struct Boundary_cleaning_result
     r.add("components_removed", components_removed);
     r.add("component_faces_removed", component_faces_removed);
     r.add("vertices_smoothed", vertices_smoothed);
+    r.add("loops", loops);
+    r.add("jagged_loops", jagged_loops);
+    r.add("loops_at_budget", loops_at_budget);
   }
 };
 
@@ -109,9 +119,10 @@ void collect_boundary_vertices(const PM& pm, VMark& seen,
 /// vertices and their 1-ring: boundary vertices average only their neighbours
 /// across boundary edges (no shrinkage into the surface), others their whole
 /// 1-ring. Jacobi steps of `step` x L(v). Returns the number of vertices moved.
-template <typename PM, typename VPM, typename Observer = No_edit_observer>
+/// Only the boundary vertices `smoothable(v)` accepts move, with their rings.
+template <typename PM, typename VPM, typename Smoothable, typename Observer = No_edit_observer>
 std::size_t smooth_boundary_ring(PM& pm, const VPM& vpm, std::size_t iterations, double step,
-                                 Observer* observer = nullptr)
+                                 const Smoothable& smoothable, Observer* observer = nullptr)
 {
   using vertex_descriptor = typename boost::graph_traits<PM>::vertex_descriptor;
   if (iterations == 0 || step == 0.) return 0;
@@ -123,7 +134,11 @@ std::size_t smooth_boundary_ring(PM& pm, const VPM& vpm, std::size_t iterations,
   }
   std::vector<vertex_descriptor> set;
   collect_boundary_vertices(pm, seen, set);
+  set.erase(std::remove_if(set.begin(), set.end(),
+                           [&](vertex_descriptor v) { return !smoothable(v); }),
+            set.end());
   const std::size_t nb = set.size();
+  if (nb == 0) return 0;
   for (std::size_t i = 0; i < nb; ++i) put(idx, set[i], int(i));
   for (std::size_t i = 0; i < nb; ++i)
     for (vertex_descriptor w : CGAL::vertices_around_target(halfedge(set[i], pm), pm))
@@ -237,10 +252,13 @@ Boundary_cleaning_result clean_boundaries(
   const std::size_t smooth_it =
       internal::get_or(np, internal_np::boundary_smoothing_iterations, std::size_t(10));
   const double step = internal::get_or(np, internal_np::boundary_smoothing_step, 0.02);
+  const double jag_turning = internal::get_or(np, internal_np::jagged_loop_turning, 2.);
+  const double share = internal::get_or(np, internal_np::boundary_erosion_share, 0.5);
 
   auto observer = SC::edit_observer(np);
   Boundary_cleaning_result r;
-  if (!(max_angle >= 0. && max_angle <= 180.) || !(step >= 0. && step <= 1.)) {
+  if (!(max_angle >= 0. && max_angle <= 180.) || !(step >= 0. && step <= 1.) ||
+      !(share >= 0. && share <= 1.) || !(jag_turning >= 0.)) {
     r.status = Status::invalid_parameter;
     return r;
   }
@@ -249,55 +267,98 @@ Boundary_cleaning_result clean_boundaries(
     return r;
   }
 
-  // Boundary vertices and the confidence region (BFS to depth `rings`).
+  // Boundary loops: each boundary vertex gets its loop's index (a manifold
+  // vertex lies on one loop at most). Only jagged loops are eroded.
   auto seen = get(CGAL::dynamic_vertex_property_t<bool>(), pmesh);
-  auto region = get(CGAL::dynamic_vertex_property_t<bool>(), pmesh);
+  auto loop_of = get(CGAL::dynamic_vertex_property_t<int>(), pmesh);
   for (vertex_descriptor v : vertices(pmesh)) {
     put(seen, v, false);
-    put(region, v, false);
+    put(loop_of, v, -1);
   }
   std::vector<vertex_descriptor> boundary;
   SC::collect_boundary_vertices(pmesh, seen, boundary);
   r.boundary_vertices = boundary.size();
   if (boundary.empty()) return r;
-  {
-    std::vector<vertex_descriptor> layer = boundary, next_layer;
-    for (vertex_descriptor v : layer) put(region, v, true);
-    r.region_vertices = layer.size();
-    for (std::size_t d = 0; d < rings && !layer.empty(); ++d) {
-      next_layer.clear();
-      for (vertex_descriptor v : layer)
-        for (vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, pmesh), pmesh))
-          if (!get(region, w)) {
-            put(region, w, true);
-            next_layer.push_back(w);
-          }
-      r.region_vertices += next_layer.size();
-      layer.swap(next_layer);
-    }
-  }
-  // Geometry is read on the region and its 1-ring only: check it is finite
-  // there before the first angle is computed.
   for (vertex_descriptor v : boundary)
     if (!SC::is_finite_point(vpm, v)) {
       r.status = Status::non_finite_input;
       return r;
     }
+  std::vector<char> jagged;
+  for (auto h : halfedges(pmesh)) {
+    if (!is_border(h, pmesh) || get(loop_of, target(h, pmesh)) >= 0) continue;
+    const int l = int(jagged.size());
+    for (auto g : CGAL::halfedges_around_face(h, pmesh)) put(loop_of, target(g, pmesh), l);
+    jagged.push_back(SC::loop_turning(h, pmesh, vpm) >
+                     jag_turning * 2. * 3.14159265358979323846);
+  }
+  r.loops = jagged.size();
+  for (char j : jagged) r.jagged_loops += std::size_t(j);
+
+  // The confidence region (BFS to depth `rings`), each vertex labelled with
+  // the loop that reached it first, and each loop's region faces: a loop
+  // loses at most `share` of them, so no component ever loses more than that
+  // share of its faces to the erosion.
+  auto region = get(CGAL::dynamic_vertex_property_t<int>(), pmesh);
+  for (vertex_descriptor v : vertices(pmesh)) put(region, v, -1);
+  std::vector<vertex_descriptor> region_list;
   {
-    bool finite = true;
-    for (vertex_descriptor v : vertices(pmesh))
-      if (get(region, v) && !SC::is_finite_point(vpm, v)) { finite = false; break; }
-    if (!finite) {
+    std::vector<vertex_descriptor> layer = boundary, next_layer;
+    for (vertex_descriptor v : layer) put(region, v, get(loop_of, v));
+    region_list = layer;
+    for (std::size_t d = 0; d < rings && !layer.empty(); ++d) {
+      next_layer.clear();
+      for (vertex_descriptor v : layer)
+        for (vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, pmesh), pmesh))
+          if (get(region, w) < 0) {
+            put(region, w, get(region, v));
+            next_layer.push_back(w);
+          }
+      region_list.insert(region_list.end(), next_layer.begin(), next_layer.end());
+      layer.swap(next_layer);
+    }
+  }
+  r.region_vertices = region_list.size();
+  // Geometry is read on the region and its 1-ring only: check it is finite
+  // there before the first angle is computed.
+  for (vertex_descriptor v : region_list)
+    if (!SC::is_finite_point(vpm, v)) {
       r.status = Status::non_finite_input;
       return r;
     }
-  }
-
-  // Iterative removal of bad boundary vertices inside the region.
   auto fmark = get(CGAL::dynamic_face_property_t<char>(), pmesh);
   for (face_descriptor f : faces(pmesh)) put(fmark, f, char(0));
+  std::vector<std::size_t> budget(jagged.size(), 0), spent(jagged.size(), 0);
+  {
+    std::vector<face_descriptor> counted;
+    for (vertex_descriptor v : region_list)
+      for (auto h : CGAL::halfedges_around_target(halfedge(v, pmesh), pmesh))
+        if (!is_border(h, pmesh) && !get(fmark, face(h, pmesh))) {
+          put(fmark, face(h, pmesh), char(1));
+          counted.push_back(face(h, pmesh));
+          ++budget[std::size_t(get(region, v))];
+        }
+    for (face_descriptor f : counted) put(fmark, f, char(0));
+    for (std::size_t& b : budget) b = static_cast<std::size_t>(share * double(b));
+  }
+  // Components too small to survive an erosion whole are never touched by
+  // the removal of small components below: it only removes pieces the
+  // erosion split off larger components.
+  auto protect = get(CGAL::dynamic_face_property_t<bool>(), pmesh);
+  for (face_descriptor f : faces(pmesh)) put(protect, f, false);
+  if (comp_faces > 1) {
+    std::vector<face_descriptor> seeds, small;
+    std::vector<std::size_t> offsets;
+    for (auto h : halfedges(pmesh))
+      if (is_border(h, pmesh)) seeds.push_back(face(opposite(h, pmesh), pmesh));
+    SC::find_small_components(pmesh, seeds, 4 * comp_faces, small, offsets);
+    for (face_descriptor f : small) put(protect, f, true);
+  }
+
+  // Iterative removal of bad boundary vertices of jagged loops inside the region.
   std::vector<vertex_descriptor> candidates = boundary, bad, survivors;
   std::vector<face_descriptor> doomed;
+  std::vector<char> at_budget(jagged.size(), 0);
   while (!candidates.empty()) {
     if (visitor.stop_requested()) {
       r.status = Status::cancelled;
@@ -307,7 +368,10 @@ Boundary_cleaning_result clean_boundaries(
     for (vertex_descriptor v : candidates) {
       if (get(seen, v)) continue;  // listed twice
       put(seen, v, true);
-      if (get(region, v) && SC::is_bad_boundary_vertex(v, pmesh, vpm, max_angle)) bad.push_back(v);
+      const int l = get(loop_of, v);
+      if (get(region, v) >= 0 && l >= 0 && jagged[std::size_t(l)] &&
+          SC::is_bad_boundary_vertex(v, pmesh, vpm, max_angle))
+        bad.push_back(v);
     }
     for (vertex_descriptor v : candidates) put(seen, v, false);
     if (bad.empty()) break;
@@ -316,34 +380,67 @@ Boundary_cleaning_result clean_boundaries(
       r.status = Status::partial;
       break;
     }
-    ++r.rounds;
+    // Each bad vertex's faces are charged to its loop; a vertex whose faces
+    // would overrun the loop's budget stays.
     doomed.clear();
-    for (vertex_descriptor v : bad)
+    std::size_t accepted = 0;
+    for (vertex_descriptor v : bad) {
+      const std::size_t l = std::size_t(get(loop_of, v));
+      std::size_t n = 0;
       for (auto h : CGAL::halfedges_around_target(halfedge(v, pmesh), pmesh))
-        if (!is_border(h, pmesh)) doomed.push_back(face(h, pmesh));
+        if (!is_border(h, pmesh) && !get(fmark, face(h, pmesh))) ++n;
+      if (spent[l] + n > budget[l]) {
+        at_budget[l] = 1;
+        continue;
+      }
+      spent[l] += n;
+      ++accepted;
+      for (auto h : CGAL::halfedges_around_target(halfedge(v, pmesh), pmesh)) {
+        if (is_border(h, pmesh)) continue;
+        if (!get(fmark, face(h, pmesh))) {
+          put(fmark, face(h, pmesh), char(1));
+          doomed.push_back(face(h, pmesh));
+        }
+        // the vertices this uncovers join the loop
+        if (get(loop_of, source(h, pmesh)) < 0) put(loop_of, source(h, pmesh), int(l));
+      }
+    }
+    for (face_descriptor f : doomed) put(fmark, f, char(0));
+    if (accepted == 0) break;
+    ++r.rounds;
     survivors.clear();
     std::size_t extra = 0;
     r.faces_removed +=
         SC::remove_faces_without_pinches(pmesh, doomed, fmark, extra, &survivors, observer);
     r.pinch_faces_removed += extra;
-    r.bad_vertices_removed += bad.size();
+    r.bad_vertices_removed += accepted;
     candidates.swap(survivors);
     visitor.progress(double(r.rounds) / double(max_rounds + 1));
   }
+  for (char b : at_budget) r.loops_at_budget += std::size_t(b);
 
-  // Small components left near the boundaries (every component with a
-  // boundary has a boundary face, so seeding from those finds them all).
-  if (comp_faces > 1) {
+  // Small pieces the erosion split off, next to the boundaries (every
+  // component with a boundary has a boundary face, so seeding from those
+  // finds them all); protected components and the largest one stay.
+  if (comp_faces > 1 && r.faces_removed > 0) {
     std::vector<face_descriptor> seeds;
     for (auto h : halfedges(pmesh))
-      if (is_border(h, pmesh)) seeds.push_back(face(opposite(h, pmesh), pmesh));
+      if (is_border(h, pmesh) && !get(protect, face(opposite(h, pmesh), pmesh)))
+        seeds.push_back(face(opposite(h, pmesh), pmesh));
     Small_components_result c =
-        SC::remove_small_components_seeded(pmesh, seeds, comp_faces, observer);
+        SC::remove_small_components_seeded(pmesh, vpm, seeds, comp_faces, 1., observer, &protect);
     r.components_removed = c.components_removed;
     r.component_faces_removed = c.faces_removed;
   }
 
-  r.vertices_smoothed = SC::smooth_boundary_ring(pmesh, vpm, smooth_it, step, observer);
+  // Only jagged loops are smoothed: clean borders keep their shape.
+  r.vertices_smoothed = SC::smooth_boundary_ring(
+      pmesh, vpm, smooth_it, step,
+      [&](vertex_descriptor v) {
+        const int l = get(loop_of, v);
+        return l >= 0 && jagged[std::size_t(l)];
+      },
+      observer);
   visitor.progress(1.);
   return r;
 }

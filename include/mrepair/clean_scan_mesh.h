@@ -3,7 +3,9 @@
 #define MREPAIR_CLEAN_SCAN_MESH_H
 
 #include <mrepair/clean_boundaries.h>
+#include <mrepair/ensure_valid_mesh.h>
 #include <mrepair/fill_small_holes.h>
+#include <mrepair/input_profile.h>
 #include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
 #include <mrepair/internal/coordinate_range.h>
 #include <mrepair/internal/clean_scan_mesh/spike_steps.h>
@@ -51,10 +53,15 @@ enum Clean_step : unsigned {
   clean_step_fill_small_holes = 1u << 5,            ///< 3.4, 3.5
   clean_step_fix_near_degenerate_faces = 1u << 6,   ///< 3.6
   clean_step_relax_spikes_again = 1u << 7,          ///< 3.7 at the end of each iteration
-  clean_step_all = 0xFFu
+  clean_step_ensure_valid = 1u << 8,                ///< ensure_valid_mesh.h, once at the end
+  clean_step_all = 0x1FFu,
+  /// the steps of the `cad` profile: the geometry and the parts stay, holes
+  /// are closed, validity is restored
+  clean_steps_cad = clean_step_remove_degenerate_vertices | clean_step_fill_small_holes |
+                    clean_step_ensure_valid
 };
 
-constexpr std::size_t number_of_clean_steps = 8;
+constexpr std::size_t number_of_clean_steps = 9;
 
 /// returns the stable name of step number `i` (0 = remove_degenerate_vertices).
 inline const char* clean_step_name(std::size_t i)
@@ -62,7 +69,7 @@ inline const char* clean_step_name(std::size_t i)
   static const char* names[number_of_clean_steps] = {
       "remove_degenerate_vertices", "relax_spikes",     "remove_unrelaxable_spikes",
       "clean_boundaries",           "remove_small_components", "fill_small_holes",
-      "fix_near_degenerate_faces",  "relax_spikes_again"};
+      "fix_near_degenerate_faces",  "relax_spikes_again",      "ensure_valid_mesh"};
   return i < number_of_clean_steps ? names[i] : "unknown";
 }
 
@@ -85,6 +92,8 @@ struct Clean_step_stats
   bool available = true;   ///< false when the step's implementation is not built in
   std::size_t runs = 0;
   std::size_t changes = 0; ///< elements moved, removed, collapsed or added
+  std::size_t faces_removed = 0;  ///< by the step's own counters
+  std::size_t faces_added = 0;
   double seconds = 0;
   Status last_status = Status::ok;
   Report last_report;      ///< result of the last run
@@ -106,7 +115,28 @@ struct Scan_cleaning_result
   Small_components_result components;   ///< totals over iterations
   Boundary_cleaning_result boundaries;  ///< totals over iterations
   Hole_filling_result holes;            ///< totals; open_holes from the last run
+  Validity_result validity;             ///< the final check
+  Input_classification profile;         ///< the profile the steps ran with, and why
   double seconds = 0;
+
+  /// faces removed by every step, as the steps counted them
+  std::size_t faces_removed() const
+  {
+    std::size_t n = 0;
+    for (const Clean_step_stats& s : steps) n += s.faces_removed;
+    return n;
+  }
+  std::size_t faces_added() const
+  {
+    std::size_t n = 0;
+    for (const Clean_step_stats& s : steps) n += s.faces_added;
+    return n;
+  }
+  /// faces before = faces after + removed - added: no face lost without a reason
+  bool faces_reconcile() const
+  {
+    return faces_before + faces_added() == faces_after + faces_removed();
+  }
 
   void to_report(Report& r) const
   {
@@ -122,6 +152,19 @@ struct Scan_cleaning_result
     r.add("isolated_vertices_removed", isolated_vertices_removed);
     r.add("faces_removed_with_non_finite", faces_removed_with_non_finite);
     r.add("seconds", seconds);
+    profile.to_report(r.section("profile"));
+    {
+      Report& fa = r.section("face_accounting");
+      fa.add("faces_in", faces_before);
+      fa.add("faces_out", faces_after);
+      Report& rm = fa.section("removed");
+      Report& ad = fa.section("added");
+      for (std::size_t i = 0; i < number_of_clean_steps; ++i) {
+        if (steps[i].faces_removed) rm.add(clean_step_name(i), steps[i].faces_removed);
+        if (steps[i].faces_added) ad.add(clean_step_name(i), steps[i].faces_added);
+      }
+      fa.add("reconciles", faces_reconcile());
+    }
     Report& st = r.section("steps");
     for (std::size_t i = 0; i < number_of_clean_steps; ++i) {
       const Clean_step_stats& s = steps[i];
@@ -133,6 +176,7 @@ struct Scan_cleaning_result
       x.add("seconds", s.seconds);
       if (s.runs) x.section("last") = s.last_report;
     }
+    validity.to_report(r.section("validity"));
     components.to_report(r.section("small_components"));
     boundaries.to_report(r.section("boundaries"));
     holes.to_report(r.section("holes"));
@@ -221,6 +265,11 @@ inline void add_totals(Hole_filling_result& a, const Hole_filling_result& b)
 /// cleans a scanned triangle mesh with the RameshCleaner pipeline (section 4).
 ///
 /// \code
+/// profile <- input_profile, or classify_input(pmesh) when automatic
+/// steps <- clean_steps if given, else all for a scan and, for a CAD or
+///          print model, only: degenerate vertices, hole filling (Liepa's
+///          patch, no refinement, no enlargement, loops up to 500 vertices),
+///          the final validity check
 /// remove non-finite vertices (with their faces) and isolated vertices
 /// repeat at most max_clean_iterations times:
 ///   relax spikes                     (relax_spikes.h, 3.7)
@@ -232,8 +281,15 @@ inline void add_totals(Hole_filling_result& a, const Hole_filling_result& b)
 ///   relax spikes again               (3.7)
 ///   stop when the iteration changed nothing, or changed exactly what the
 ///   previous one did (a cycle: nothing will converge further)
+/// ensure a valid output                 (ensure_valid_mesh.h)
 /// collect garbage (Surface_mesh)
 /// \endcode
+/// Safety policy (doc/guarantees.md): the largest component is never
+/// removed, and others only when small next to it too; boundary erosion
+/// touches jagged loops only and never takes more than `boundary_erosion_share`
+/// of a loop's region; a loop whose cap would be large next to its component
+/// is a sheet's border and stays open; `faces_reconcile()` holds: every face
+/// removed or added is counted by the step that did it.
 /// Holes with `max_hole_vertices` vertices or more are never filled and
 /// components with `min_component_faces` faces or more never removed: large
 /// holes are only polished, as the paper argues. Every step can be disabled.
@@ -242,11 +298,14 @@ inline void add_totals(Hole_filling_result& a, const Hole_filling_result& b)
 /// \param pmesh a valid triangle mesh (manifold, as CGAL halfedge meshes are)
 /// \param np optional:
 ///   - `vertex_point_map` (default: internal point map)
-///   - `clean_steps` (unsigned mask of `Clean_step`, default `clean_step_all`)
+///   - `input_profile` (`Input_profile`, default `automatic`: `classify_input()`)
+///   - `clean_steps` (unsigned mask of `Clean_step`; default: by profile)
 ///   - `max_clean_iterations` (std::size_t, default 5; the paper runs 3 to 5)
 ///   - `spike_angle` (double, degrees; default: that of `relax_spikes()`)
-///   - `min_component_faces` (std::size_t, default 400)
-///   - `max_hole_vertices` (std::size_t, default 100)
+///   - `min_component_faces` (std::size_t, default 400), `relative_component_size` (0.01)
+///   - `max_hole_vertices` (std::size_t, default 100; 500 for the cad profile),
+///     `max_hole_area_share` (0.25)
+///   - `jagged_loop_turning` (2), `boundary_erosion_share` (0.5): see `clean_boundaries()`
 ///   - `boundary_dihedral_angle` (double, degrees, default 120)
 ///   - `hole_density_factor` (double, default 1), `fair_hole_patches` (bool, default false)
 ///   - `collect_garbage` (bool, default true)
@@ -276,16 +335,26 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
   auto vpm = CGAL::parameters::choose_parameter(
       CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
       get_property_map(CGAL::vertex_point, pmesh));
-  const unsigned mask = internal::get_or(np, internal_np::clean_steps, unsigned(clean_step_all));
+  unsigned mask = internal::get_or(np, internal_np::clean_steps, unsigned(clean_step_all));
+  const bool steps_given =
+      !CGAL::parameters::is_default_parameter<NamedParameters, internal_np::clean_steps_t>::value;
+  const Input_profile asked =
+      internal::get_or(np, internal_np::input_profile, Input_profile::automatic);
   const std::size_t max_it =
       internal::get_or(np, internal_np::max_clean_iterations, std::size_t(5));
   const double spike_angle = internal::get_or(np, internal_np::spike_angle,
                                               std::numeric_limits<double>::quiet_NaN());
   const std::size_t min_comp =
       internal::get_or(np, internal_np::min_component_faces, std::size_t(400));
-  const std::size_t max_hole =
-      internal::get_or(np, internal_np::max_hole_vertices, std::size_t(100));
+  const double relative_comp = internal::get_or(np, internal_np::relative_component_size, 0.01);
+  const bool hole_limit_given =
+      !CGAL::parameters::is_default_parameter<NamedParameters,
+                                              internal_np::max_hole_vertices_t>::value;
+  std::size_t max_hole = internal::get_or(np, internal_np::max_hole_vertices, std::size_t(100));
+  const double hole_share = internal::get_or(np, internal_np::max_hole_area_share, 0.25);
   const double boundary_angle = internal::get_or(np, internal_np::boundary_dihedral_angle, 120.);
+  const double jag_turning = internal::get_or(np, internal_np::jagged_loop_turning, 2.);
+  const double erosion_share = internal::get_or(np, internal_np::boundary_erosion_share, 0.5);
   const double density = internal::get_or(np, internal_np::hole_density_factor, 1.);
   const bool fair = internal::get_or(np, internal_np::fair_hole_patches, false);
   const bool gc = internal::get_or(np, internal_np::collect_garbage, true);
@@ -306,7 +375,9 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
 
   if ((!std::isnan(spike_angle) && !(spike_angle > 0. && spike_angle < 180.)) ||
       min_comp == 0 || max_hole == 0 || !(density > 0.) || !std::isfinite(density) ||
-      !(boundary_angle >= 0. && boundary_angle <= 180.))
+      !(boundary_angle >= 0. && boundary_angle <= 180.) ||
+      !(relative_comp >= 0. && relative_comp <= 1.) || !(hole_share >= 0.) ||
+      !(erosion_share >= 0. && erosion_share <= 1.) || !(jag_turning >= 0.))
     return finish(Status::invalid_parameter, "a parameter is out of range");
   if (r.vertices_before == 0) return finish(Status::empty_input, "the mesh has no vertex");
   if (!CGAL::is_triangle_mesh(pmesh))
@@ -314,6 +385,15 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
   // NaN vertices are removed below; finite ones must stay in range
   if (internal::coordinates_too_large(pmesh, vpm))
     return finish(Status::non_finite_input, internal::coordinates_too_large_message);
+
+  // The input kind decides which steps run, unless the caller chose them.
+  r.profile = classify_input(pmesh, MP::input_profile(asked, CGAL::parameters::vertex_point_map(vpm)));
+  const bool cad = r.profile.profile == Input_profile::cad;
+  if (!steps_given) mask = cad ? unsigned(clean_steps_cad) : unsigned(clean_step_all);
+  // CAD holes can be long loops around a flat cut; Liepa's triangulation
+  // restricted to the 3D Delaunay edges handles them.
+  if (cad && !hole_limit_given) max_hole = 500;
+  for (std::size_t i = 0; i < number_of_clean_steps; ++i) r.steps[i].enabled = (mask >> i) & 1u;
 
   if (mask & clean_step_fill_small_holes) SC::reserve_room_for_fills(pmesh);
   SC::Forwarding_visitor<Handle> fwd(&visitor);
@@ -337,6 +417,8 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
     if (!o.available) return true;
     ++s.runs;
     s.changes += o.changes;
+    s.faces_removed += o.faces_removed;
+    s.faces_added += o.faces_added;
     s.last_status = o.status;
     s.last_report = std::move(o.report);
     return o.status != Status::cancelled;
@@ -387,6 +469,7 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
       }
       o.changes = r.faces_removed_with_non_finite + r.non_finite_vertices_removed +
                   r.isolated_vertices_removed;
+      o.faces_removed = r.faces_removed_with_non_finite;
       o.report.add("non_finite_vertices_removed", r.non_finite_vertices_removed);
       o.report.add("isolated_vertices_removed", r.isolated_vertices_removed);
       o.report.add("faces_removed_with_non_finite", r.faces_removed_with_non_finite);
@@ -413,33 +496,51 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
         run_step(2, [&]() { return spikes.remove_unrelaxable(fwd); }) &&
         run_step(3, [&]() {
           Boundary_cleaning_result b = clean_boundaries(
-              pmesh, MP::boundary_dihedral_angle(boundary_angle, obs_np));
+              pmesh, MP::boundary_dihedral_angle(
+                         boundary_angle,
+                         MP::jagged_loop_turning(
+                             jag_turning, MP::boundary_erosion_share(erosion_share, obs_np))));
           SC::add_totals(r.boundaries, b);
           SC::Step_outcome o;
           o.status = b.status;
           o.changes = b.faces_removed + b.component_faces_removed;
+          o.faces_removed = o.changes;
           b.to_report(o.report);
           return o;
         }) &&
         run_step(4, [&]() {
-          Small_components_result c =
-              remove_small_components(pmesh, MP::min_component_faces(min_comp, obs_np));
+          Small_components_result c = remove_small_components(
+              pmesh, MP::min_component_faces(
+                         min_comp, MP::relative_component_size(relative_comp, obs_np)));
           SC::add_totals(r.components, c);
           SC::Step_outcome o;
           o.status = c.status;
           o.changes = c.faces_removed;
+          o.faces_removed = c.faces_removed;
           c.to_report(o.report);
           return o;
         }) &&
         run_step(5, [&]() {
+          // CAD: Liepa's patch only (no refinement to a density the part
+          // does not have) and no enlargement (it removes the user's faces)
           Hole_filling_result h = fill_small_holes(
-              pmesh, MP::max_hole_vertices(
-                         max_hole, MP::hole_density_factor(
-                                       density, MP::fair_hole_patches(fair, obs_np))));
+              pmesh,
+              MP::max_hole_vertices(
+                  max_hole,
+                  MP::hole_density_factor(
+                      density,
+                      MP::fair_hole_patches(
+                          fair && !cad,
+                          MP::refine_hole_patches(
+                              !cad, MP::max_hole_enlargements(
+                                        cad ? std::size_t(0) : std::size_t(3),
+                                        MP::max_hole_area_share(hole_share, obs_np)))))));
           SC::add_totals(r.holes, h);
           SC::Step_outcome o;
           o.status = h.status;
           o.changes = h.holes_filled + h.enlargement_faces_removed;
+          o.faces_removed = h.enlargement_faces_removed;
+          o.faces_added = h.faces_added;
           h.to_report(o.report);
           return o;
         }) &&
@@ -464,11 +565,25 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
     previous = delta;
   }
   spikes.invalidate();  // drop its property maps before the garbage collection
+  // The last check: whatever the steps left, no exactly degenerate or
+  // duplicate face and no non-manifold vertex goes out.
+  const bool valid_ok = run_step(8, [&]() {
+    r.validity = ensure_valid_mesh(pmesh, CGAL::parameters::vertex_point_map(vpm));
+    SC::Step_outcome o;
+    o.status = r.validity.status;
+    o.changes = r.validity.operations + r.validity.duplicate_faces_removed +
+                r.validity.non_manifold_vertices_split;
+    o.faces_removed = r.validity.faces_removed();
+    r.validity.to_report(o.report);
+    return o;
+  });
+  (void)valid_ok;
   // relax_spikes (step 1) is expected to leave unrelaxable spikes to step 2
   for (std::size_t i = 2; i < number_of_clean_steps; ++i)
     if (r.steps[i].runs && r.steps[i].last_status == Status::partial) partial = true;
+  if (r.validity.degenerate_faces_left > 0) r.message = r.validity.message;
   if (gc) SC::collect_garbage_of(pmesh);
-  return finish(partial ? Status::partial : Status::ok);
+  return finish(partial ? Status::partial : Status::ok, r.message);
 }
 
 }  // namespace mrepair

@@ -3,6 +3,7 @@
 #define MREPAIR_FILL_SMALL_HOLES_H
 
 #include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+#include <mrepair/internal/clean_scan_mesh/safety.h>
 #include <mrepair/internal/coordinate_range.h>
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
@@ -39,6 +40,7 @@ MREPAIR_ADD_NAMED_PARAMETER(fair_hole_patches)      // bool, fair patches after 
 MREPAIR_ADD_NAMED_PARAMETER(refine_hole_patches)    // bool, refine patches (true)
 MREPAIR_ADD_NAMED_PARAMETER(max_hole_enlargements)  // enlargements of an aborted fill (3)
 MREPAIR_ADD_NAMED_PARAMETER(hole_delaunay_above)    // loops with more vertices use the DT3 search space (30)
+MREPAIR_ADD_NAMED_PARAMETER(max_hole_area_share)    // a loop whose cap exceeds this share of its component's area is a border (0.25)
 
 namespace mrepair {
 
@@ -57,6 +59,7 @@ struct Hole_filling_result
   Status status = Status::ok;
   std::size_t holes_found = 0;      ///< boundary loops with fewer than max_hole_vertices vertices
   std::size_t holes_too_large = 0;  ///< loops at or above the limit, left open on purpose
+  std::size_t sheet_borders = 0;    ///< small loops left open because they border a sheet (cap too large for its component)
   std::size_t holes_filled = 0;     ///< holes closed (after enlargement or not)
   std::size_t aborted_fills = 0;    ///< triangulations that failed (complex edge, degenerate loop)
   std::size_t enlargements = 0;     ///< 1-ring enlargements of aborted holes
@@ -71,6 +74,7 @@ struct Hole_filling_result
     r.add("holes_found", holes_found);
     r.add("holes_filled", holes_filled);
     r.add("holes_too_large", holes_too_large);
+    r.add("sheet_borders", sheet_borders);
     r.add("aborted_fills", aborted_fills);
     r.add("enlargements", enlargements);
     r.add("enlargement_faces_removed", enlargement_faces_removed);
@@ -80,7 +84,7 @@ struct Hole_filling_result
     std::size_t failed = 0, grew = 0, nonfinite = 0;
     for (const Open_hole& h : open_holes) {
       if (h.reason == "triangulation_failed") ++failed;
-      else if (h.reason == "grew_too_large") ++grew;
+      else if (h.reason == "grew_too_large" || h.reason == "component_too_small") ++grew;
       else ++nonfinite;
     }
     if (!open_holes.empty()) {
@@ -110,16 +114,62 @@ class Small_hole_filler
   double density_;
   bool refine_, fair_;
   std::size_t delaunay_above_;
+  double area_share_;
   Observer* observer_;
+  // scratch of the bounded component searches, all zero between searches
+  typename boost::property_map<PM, CGAL::dynamic_face_property_t<char>>::type visited_;
+  std::vector<face_descriptor> reached_;
 
 public:
   Hole_filling_result result;
 
   Small_hole_filler(PM& pm, VPM vpm, std::size_t max_vertices, double density, bool refine,
-                    bool fair, std::size_t delaunay_above, Observer* observer)
+                    bool fair, std::size_t delaunay_above, double area_share, Observer* observer)
     : pm_(pm), vpm_(vpm), max_vertices_(max_vertices), density_(density), refine_(refine),
-      fair_(fair), delaunay_above_(delaunay_above), observer_(observer)
-  {}
+      fair_(fair), delaunay_above_(delaunay_above), area_share_(area_share), observer_(observer),
+      visited_(get(CGAL::dynamic_face_property_t<char>(), pm))
+  {
+    for (face_descriptor f : faces(pm_)) put(visited_, f, char(0));
+  }
+
+  // Grows the component of face `f0` until its faces reach `min_area` of
+  // area or `min_faces` faces (each bound ignored when 0); true when they
+  // do. The search stops there, so a small hole in a large mesh costs a few
+  // rings, not the mesh.
+  bool component_reaches(face_descriptor f0, double min_area, std::size_t min_faces)
+  {
+    reached_.assign(1, f0);
+    put(visited_, f0, char(1));
+    double area = 0.;
+    bool enough = false;
+    for (std::size_t head = 0; head < reached_.size() && !enough; ++head) {
+      const face_descriptor f = reached_[head];
+      const double a = 0.5 * norm(face_normal(halfedge(f, pm_), pm_, vpm_));
+      if (std::isfinite(a)) area += a;
+      enough = (min_area > 0. && area >= min_area) || (min_faces > 0 && head + 1 >= min_faces);
+      for (halfedge_descriptor g : CGAL::halfedges_around_face(halfedge(f, pm_), pm_)) {
+        halfedge_descriptor o = opposite(g, pm_);
+        if (is_border(o, pm_) || get(visited_, face(o, pm_))) continue;
+        put(visited_, face(o, pm_), char(1));
+        reached_.push_back(face(o, pm_));
+      }
+    }
+    for (face_descriptor f : reached_) put(visited_, f, char(0));
+    return enough;
+  }
+
+  // The hole-or-border rule (doc/guarantees.md): a loop is a hole when the
+  // cap that closes it is small next to the surface around it, under
+  // `area_share_` of its component's area. The outer border of a sheet, a
+  // patch or a lone triangle has a cap as large as the sheet itself, and
+  // capping it would make a zero-volume double layer.
+  bool is_sheet_border(halfedge_descriptor h)
+  {
+    if (area_share_ <= 0.) return false;
+    const double cap = loop_cap_area(h, pm_, vpm_);
+    if (!(cap > 0.)) return false;  // a flat zero-area loop: closing it adds nothing
+    return !component_reaches(face(opposite(h, pm_), pm_), cap / area_share_, 0);
+  }
 
   std::size_t loop_size(halfedge_descriptor h) const
   {
@@ -458,11 +508,13 @@ public:
       if (visitor.stop_requested()) return Status::cancelled;
       std::size_t n = loop_size(h);
       if (n >= max_vertices_) { ++result.holes_too_large; continue; }
-      ++result.holes_found;
       if (!loop_is_finite(h)) {  // no fill and no enlargement around bad data
+        ++result.holes_found;
         result.open_holes.push_back({n, "non_finite"});
         continue;
       }
+      if (is_sheet_border(h)) { ++result.sheet_borders; continue; }
+      ++result.holes_found;
       if (fill(h, n)) ++result.holes_filled;
       else { ++result.aborted_fills; failed.push_back(h); }
       if ((++done & 63) == 0) visitor.progress(double(done) / double(loops.size()));
@@ -477,12 +529,26 @@ public:
         break;
       }
       if (visitor.stop_requested()) return Status::cancelled;
+      // An enlargement removes the loop's 1-ring: only where the component
+      // is at least ten times larger, so that no small part is eaten.
+      {
+        std::vector<halfedge_descriptor> kept;
+        for (halfedge_descriptor h : failed) {
+          std::size_t ring = 0;
+          for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_))
+            ring += degree(target(g, pm_), pm_);
+          if (component_reaches(face(opposite(h, pm_), pm_), 0., 10 * ring)) kept.push_back(h);
+          else result.open_holes.push_back({loop_size(h), "component_too_small"});
+        }
+        failed.swap(kept);
+        if (failed.empty()) break;
+      }
       loops.clear();
       enlarge(failed, loops);
       failed.clear();
       for (halfedge_descriptor h : loops) {
         std::size_t n = loop_size(h);
-        if (n >= max_vertices_) {
+        if (n >= max_vertices_ || is_sheet_border(h)) {
           result.open_holes.push_back({n, "grew_too_large"});
           continue;
         }
@@ -507,6 +573,8 @@ public:
 ///
 /// \code
 /// for each border loop with n < max_hole_vertices vertices:
+///   if the cap that closes it has more than max_hole_area_share of the area
+///     of its component: leave it open (the border of a sheet, not a hole)
 ///   triangulate it with Liepa's minimum-weight method (min. max. dihedral
 ///     angle, then area; existing edges and degenerate triangles excluded)
 ///   if no valid triangulation exists (the fill would create a complex edge):
@@ -514,6 +582,7 @@ public:
 ///   else refine the patch to the density of the loop's edges x hole_density_factor
 ///     (split > 4/3 L, flip to valence 6, relax), fair it if asked
 /// repeat at most max_hole_enlargements times while some fills aborted:
+///   leave open the loops whose component is under 10x their 1-ring's faces
 ///   remove the 1-ring faces of the aborted loops (no pinched vertex left)
 ///   fill the loops this makes if they are still small, else leave them open
 /// \endcode
@@ -534,6 +603,9 @@ public:
 ///   - `refine_hole_patches` (bool, default true)
 ///   - `fair_hole_patches` (bool, default false): `CGAL::PMP::fair` on the patch interior
 ///   - `max_hole_enlargements` (std::size_t, default 3)
+///   - `max_hole_area_share` (double, default 0.25; 0: every small loop is a
+///     hole): a loop whose cap (the fan from its centroid) has more area than
+///     this share of its component is a sheet's border and stays open
 ///   - `hole_delaunay_above` (std::size_t, default 30): loops with more vertices
 ///     restrict Liepa's search to the edges of a 3D Delaunay triangulation
 ///   - `visitor`: phase "fill_small_holes"; `stop_requested()` polled between holes
@@ -560,7 +632,8 @@ Hole_filling_result fill_small_holes(PolygonMesh& pmesh,
       internal::get_or(np, internal_np::max_hole_enlargements, std::size_t(3));
   const std::size_t dt_above =
       internal::get_or(np, internal_np::hole_delaunay_above, std::size_t(30));
-  if (!(density > 0.) || !std::isfinite(density)) {
+  const double area_share = internal::get_or(np, internal_np::max_hole_area_share, 0.25);
+  if (!(density > 0.) || !std::isfinite(density) || !(area_share >= 0.)) {
     Hole_filling_result r;
     r.status = Status::invalid_parameter;
     return r;
@@ -573,7 +646,7 @@ Hole_filling_result fill_small_holes(PolygonMesh& pmesh,
   auto observer = internal::clean_pipeline::edit_observer(np);
   internal::clean_pipeline::Small_hole_filler<PolygonMesh, decltype(vpm),
                                               std::remove_pointer_t<decltype(observer)>>
-      filler(pmesh, vpm, max_vertices, density, refine, fair, dt_above, observer);
+      filler(pmesh, vpm, max_vertices, density, refine, fair, dt_above, area_share, observer);
   Status s = filler.run(enlargements, visitor);
   filler.result.status = s;
   visitor.progress(1.);

@@ -27,10 +27,14 @@
 ///   the first vertex) wrap to huge values in an unsigned type, so that every
 ///   invalid index `i` of a `std::size_t` polygon satisfies `i >= points.size()`.
 /// When both occur, the status is `invalid_index`.
+/// PLY faces with fewer than 3 vertices (list count 0, 1 or 2) are left out
+/// of the soup instead, counted in `polygons_skipped` and named in the message;
+/// they alone do not change the status.
 /// Files that cannot be read (`io_error`), are malformed or truncated
-/// (`parse_error`), hold no point or no polygon (`empty_input`) or are of an
-/// unknown kind (`unsupported_format`) leave the outputs empty. The message is
-/// one line `path[:line]: reason`.
+/// (`parse_error`), hold no point or no polygon (`empty_input`; points without
+/// faces are named a point cloud) or are of an unknown kind
+/// (`unsupported_format`) leave the outputs empty. The message is one line
+/// `path[:line]: reason`.
 
 #include <mrepair/internal/io/build_mesh.h>
 #include <mrepair/internal/io/common.h>
@@ -68,6 +72,7 @@ struct Io_result
   std::size_t polygons = 0;     ///< polygons read (written; for STL: triangles written)
   std::size_t non_finite_points = 0;  ///< points with a NaN or infinite coordinate
   std::size_t invalid_polygons = 0;   ///< polygons with < 3 vertices or an out-of-range index
+  std::size_t polygons_skipped = 0;   ///< PLY faces with < 3 vertices, left out of the soup
 
   void to_report(Report& r) const
   {
@@ -79,6 +84,7 @@ struct Io_result
     r.add("polygons", polygons);
     r.add("non_finite_points", non_finite_points);
     r.add("invalid_polygons", invalid_polygons);
+    r.add("polygons_skipped", polygons_skipped);
   }
 };
 
@@ -94,6 +100,7 @@ inline void read_raw(const std::string& path, Raw_soup& raw, Io_result& r)
   const std::string ext = extension(path);
   r.format = ext;
   bool ok = false;
+  Ply_skipped_faces skipped;
   try {
     if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl") {
       r.format.clear();
@@ -108,7 +115,7 @@ inline void read_raw(const std::string& path, Raw_soup& raw, Io_result& r)
         else if (ext == "obj")
           ok = read_obj(buf, path, raw, err);
         else if (ext == "ply")
-          ok = read_ply(buf, path, raw, err, binary);
+          ok = read_ply(buf, path, raw, err, binary, &skipped);
         else
           ok = read_stl(buf, path, raw, err, binary);
         r.binary = binary;
@@ -118,7 +125,20 @@ inline void read_raw(const std::string& path, Raw_soup& raw, Io_result& r)
     ok = false;
     err.set(Status::io_error, path + ": out of memory");
   }
-  if (ok && (raw.num_points() == 0 || raw.num_polygons() == 0)) {
+  // "N face(s) with fewer than 3 vertices skipped (first is face K)"
+  const std::string skipped_note =
+      skipped.count == 0 ? std::string()
+                         : std::to_string(skipped.count) +
+                               " face(s) with fewer than 3 vertices skipped (first is face " +
+                               std::to_string(skipped.first) + ")";
+  if (ok && raw.num_points() > 0 && raw.num_polygons() == 0) {
+    ok = false;
+    err.set(Status::empty_input,
+            path + ": no faces (a point cloud of " + std::to_string(raw.num_points()) +
+                (raw.num_points() == 1 ? " vertex" : " vertices") +
+                (skipped.count ? "; " + skipped_note : std::string()) +
+                "); mrepair repairs surface meshes");
+  } else if (ok && (raw.num_points() == 0 || raw.num_polygons() == 0)) {
     ok = false;
     err.set(Status::empty_input, path + ": " + std::to_string(raw.num_points()) + " points and " +
                                      std::to_string(raw.num_polygons()) + " polygons, nothing to work on");
@@ -178,6 +198,15 @@ inline void read_raw(const std::string& path, Raw_soup& raw, Io_result& r)
     r.message = path + where + ": " + std::to_string(r.non_finite_points) +
                 " point(s) with NaN or infinite coordinates, first is point " +
                 std::to_string(first_bad_point);
+  }
+  r.polygons_skipped = skipped.count;
+  if (skipped.count) {
+    if (r.message.empty())
+      r.message = path +
+                  (skipped.first_line ? ":" + std::to_string(skipped.first_line) : std::string()) +
+                  ": " + skipped_note;
+    else
+      r.message += "; " + skipped_note;
   }
 }
 
@@ -432,8 +461,9 @@ Io_result read_polygon_mesh(const std::string& path, PolygonMesh& pmesh,
                              });
     const std::size_t isolated = r.points - static_cast<std::size_t>(vertices(pmesh).size());
     if (isolated)
-      r.message = path + ": " + std::to_string(isolated) +
-                  " point(s) used by no polygon were not added to the mesh";
+      r.message += (r.message.empty() ? path + ": " : std::string("; ")) +
+                   std::to_string(isolated) +
+                   " point(s) used by no polygon were not added to the mesh";
   } catch (const std::bad_alloc&) {
     CGAL::clear(pmesh);
     r.status = Status::io_error;

@@ -3,6 +3,7 @@
 #define MREPAIR_REMOVE_SMALL_COMPONENTS_H
 
 #include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+#include <mrepair/internal/clean_scan_mesh/safety.h>
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
 #include <mrepair/status.h>
@@ -16,12 +17,17 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <type_traits>
+#include <cstddef>
 #include <vector>
 
 /// \file remove_small_components.h
 /// RameshCleaner 3.2: removal of small face-connected components by a
 /// region growing that stops as soon as a component reaches the threshold, so
-/// that large components cost little.
+/// that large components cost little. "Small" is also relative to the
+/// largest component, which is never removed.
+
+MREPAIR_ADD_NAMED_PARAMETER(relative_component_size)  // share of the largest component (0.01)
 
 namespace mrepair {
 
@@ -33,8 +39,10 @@ struct Small_components_result
   std::size_t components_removed = 0;
   std::size_t faces_removed = 0;
   std::size_t vertices_removed = 0;
-  /// every component was small; the largest one was kept so as not to empty the mesh
+  /// the largest component was among the small candidates and was kept
   bool kept_largest = false;
+  /// small by face count but not small next to the largest component: kept
+  std::size_t components_kept_relative = 0;
 
   void to_report(Report& r) const
   {
@@ -42,6 +50,7 @@ struct Small_components_result
     r.add("components_removed", components_removed);
     r.add("faces_removed", faces_removed);
     r.add("vertices_removed", vertices_removed);
+    r.add("components_kept_relative", components_kept_relative);
     if (kept_largest) r.add("kept_largest_small_component", true);
   }
 };
@@ -102,12 +111,20 @@ void find_small_components(const PM& pm, const FaceRange& seeds, std::size_t thr
 }
 
 /// Removes the small components that contain a face of `seeds` (see
-/// `find_small_components()`); never empties a non-empty mesh: when every
-/// component is small, the largest is kept.
-template <typename PM, typename FaceRange, typename Observer = No_edit_observer>
-Small_components_result remove_small_components_seeded(PM& pm, const FaceRange& seeds,
-                                                       std::size_t threshold,
-                                                       Observer* observer = nullptr)
+/// `find_small_components()`). A component is small when it has fewer than
+/// `threshold` faces and, relative to the largest component (most faces),
+/// fewer than `relative` times its faces and less than `relative` times its
+/// area. The largest component is never removed, so a non-empty mesh is never
+/// emptied and a model made of several comparable parts keeps them all.
+/// With `protect` (a face property of bool), components with a protected face
+/// stay too.
+template <typename PM, typename VPM, typename FaceRange, typename Observer = No_edit_observer,
+          typename Protect = std::nullptr_t>
+Small_components_result remove_small_components_seeded(PM& pm, const VPM& vpm,
+                                                       const FaceRange& seeds,
+                                                       std::size_t threshold, double relative,
+                                                       Observer* observer = nullptr,
+                                                       const Protect* protect = nullptr)
 {
   using face_descriptor = typename boost::graph_traits<PM>::face_descriptor;
   Small_components_result r;
@@ -116,16 +133,35 @@ Small_components_result remove_small_components_seeded(PM& pm, const FaceRange& 
   find_small_components(pm, seeds, threshold, small, offsets);
   const std::size_t n_comp = offsets.size() - 1;
   if (n_comp == 0) return r;
-  std::size_t keep = n_comp;  // component index spared, n_comp = none
-  if (small.size() == static_cast<std::size_t>(faces(pm).size())) {
-    keep = 0;
-    for (std::size_t c = 1; c < n_comp; ++c)
-      if (offsets[c + 1] - offsets[c] > offsets[keep + 1] - offsets[keep]) keep = c;
-    r.kept_largest = true;
-  }
+  // Sizes of every component, to compare the candidates with the largest.
+  auto id = get(CGAL::dynamic_face_property_t<std::size_t>(), pm);
+  std::vector<std::size_t> faces_of;
+  std::vector<double> area_of;
+  label_components(pm, vpm, id, faces_of, area_of);
+  std::size_t largest = 0;
+  for (std::size_t c = 1; c < faces_of.size(); ++c)
+    if (faces_of[c] > faces_of[largest] ||
+        (faces_of[c] == faces_of[largest] && area_of[c] > area_of[largest]))
+      largest = c;
   const std::size_t nv = static_cast<std::size_t>(vertices(pm).size());
   for (std::size_t c = 0; c < n_comp; ++c) {
-    if (c == keep) continue;
+    const std::size_t label = get(id, small[offsets[c]]);
+    const std::size_t nf = offsets[c + 1] - offsets[c];
+    if (label == largest) {
+      r.kept_largest = true;
+      continue;
+    }
+    if (!(double(nf) < relative * double(faces_of[largest])) ||
+        !(area_of[label] < relative * area_of[largest])) {
+      ++r.components_kept_relative;
+      continue;
+    }
+    if constexpr (!std::is_same<Protect, std::nullptr_t>::value) {
+      bool is_protected = false;
+      for (std::size_t i = offsets[c]; i < offsets[c + 1] && !is_protected; ++i)
+        is_protected = get(*protect, small[i]);
+      if (is_protected) continue;
+    }
     // Components are vertex-disjoint in a valid mesh: removing one whole never
     // pinches another.
     if (observer) {
@@ -139,7 +175,7 @@ Small_components_result remove_small_components_seeded(PM& pm, const FaceRange& 
     for (std::size_t i = offsets[c]; i < offsets[c + 1]; ++i)
       CGAL::Euler::remove_face(halfedge(small[i], pm), pm);
     ++r.components_removed;
-    r.faces_removed += offsets[c + 1] - offsets[c];
+    r.faces_removed += nf;
   }
   r.vertices_removed = nv - static_cast<std::size_t>(vertices(pm).size());
   return r;
@@ -155,18 +191,23 @@ Small_components_result remove_small_components_seeded(PM& pm, const FaceRange& 
 /// Components are found by queue-based region growing that stops as soon as a
 /// component reaches the threshold (or meets a face known to be in a large
 /// component), so the cost is linear in the mesh size whatever the threshold.
-/// When every component is small, the largest one is kept so that a non-empty
-/// mesh is never emptied (`kept_largest` in the result).
+/// A component is removed only when it is also small next to the largest
+/// component: fewer than `relative_component_size` times its faces and less
+/// than that share of its area. The largest component is never removed (so a
+/// non-empty mesh is never emptied, and two equal parts both stay).
 ///
 /// \tparam PolygonMesh model of `MutableFaceGraph`
 /// \param pmesh a valid polygon mesh
 /// \param np optional:
 ///   - `min_component_faces` (std::size_t, default 400, the paper's tables):
 ///     components with fewer faces are removed
+///   - `relative_component_size` (double in [0, 1], default 0.01): ... and
+///     fewer faces and less area than this share of the largest component
+///   - `vertex_point_map` (default: internal point map), for the areas
 ///   - `visitor` (default `Default_visitor`): phase "remove_small_components";
 ///     `stop_requested()` polled before any change
 /// \return `Small_components_result`; `status` is `ok`, `cancelled` or
-///   `invalid_parameter` (threshold 0); `pmesh` stays valid
+///   `invalid_parameter` (threshold 0, share outside [0, 1]); `pmesh` stays valid
 template <typename PolygonMesh,
           typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Small_components_result remove_small_components(
@@ -177,8 +218,12 @@ Small_components_result remove_small_components(
       visitor, "remove_small_components");
   const std::size_t threshold =
       internal::get_or(np, internal_np::min_component_faces, std::size_t(400));
+  const double relative = internal::get_or(np, internal_np::relative_component_size, 0.01);
+  auto vpm = CGAL::parameters::choose_parameter(
+      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+      get_property_map(CGAL::vertex_point, pmesh));
   Small_components_result r;
-  if (threshold == 0) {
+  if (threshold == 0 || !(relative >= 0. && relative <= 1.)) {
     r.status = Status::invalid_parameter;
     return r;
   }
@@ -187,7 +232,7 @@ Small_components_result remove_small_components(
     return r;
   }
   r = internal::clean_pipeline::remove_small_components_seeded(
-      pmesh, faces(pmesh), threshold, internal::clean_pipeline::edit_observer(np));
+      pmesh, vpm, faces(pmesh), threshold, relative, internal::clean_pipeline::edit_observer(np));
   visitor.progress(1.);
   return r;
 }

@@ -28,6 +28,7 @@ struct Step_outcome
   bool available = true;
   Status status = Status::ok;
   std::size_t changes = 0;  // elements changed (moved, removed, collapsed)
+  std::size_t faces_removed = 0, faces_added = 0;  // by the step's own counters
   Report report;
 };
 
@@ -103,6 +104,7 @@ public:
         with_np(vis, [&](const auto& np) { return remove_unrelaxable_spikes(pm_, stats(), np); });
     o.status = r.status;
     o.changes = r.faces_removed + r.dangling_faces_removed;
+    o.faces_removed = r.faces_removed + r.dangling_faces_removed;
     r.to_report(o.report);
     return o;
   }
@@ -115,6 +117,7 @@ public:
         pm_, stats(), CGAL::parameters::visitor(std::ref(vis)));
     o.status = r.status;
     o.changes = r.edges_collapsed + r.edges_flipped;
+    o.faces_removed = r.faces_before - r.faces_after;
     r.to_report(o.report);
     return o;
   }

@@ -5,8 +5,10 @@
 // PLY reader: ascii, binary_little_endian and binary_big_endian. From element
 // `vertex` it takes the scalar properties x, y, z (any numeric type); from
 // element `face` the list property `vertex_indices` (or `vertex_index`) with
-// any count and index types. Every other property and element is skipped by
-// its type, so files with normals, colors, edges or materials read fine.
+// any integer count type and any index type. Every other property and element
+// is skipped by its type, so files with normals, colors, flags, edges or
+// materials read fine. Faces with fewer than 3 vertices (list count 0, 1 or 2)
+// are left out of the soup and counted in `Ply_skipped_faces`.
 
 #include <mrepair/internal/io/common.h>
 
@@ -54,6 +56,21 @@ struct Ply_element
   std::string name;
   std::uint64_t count = 0;
   std::vector<Ply_property> properties;
+};
+
+/// faces with fewer than 3 vertices that `read_ply` left out of the soup.
+struct Ply_skipped_faces
+{
+  std::size_t count = 0;
+  std::uint64_t first = 0;      ///< index of the first one in its face element
+  std::size_t first_line = 0;   ///< ascii: its line (0 for binary)
+  void add(std::uint64_t face, std::size_t line)
+  {
+    if (count++ == 0) {
+      first = face;
+      first_line = line;
+    }
+  }
 };
 
 /// binary values of one PLY file.
@@ -109,9 +126,24 @@ struct Ply_binary
   }
 };
 
-inline bool read_ply(const File_buffer& buf, const std::string& path, Raw_soup& soup, Error& err,
-                     bool& binary)
+/// ends the face whose corners were added since `first_corner`: a polygon
+/// when it has at least 3, otherwise removed again and counted in `skipped`.
+inline void end_ply_face(Raw_soup& soup, std::size_t first_corner, std::uint64_t face,
+                         std::size_t line, Ply_skipped_faces& skipped)
 {
+  if (soup.indices.size() - first_corner >= 3) {
+    soup.end_polygon(line);
+  } else {
+    soup.indices.resize(first_corner);
+    skipped.add(face, line);
+  }
+}
+
+inline bool read_ply(const File_buffer& buf, const std::string& path, Raw_soup& soup, Error& err,
+                     bool& binary, Ply_skipped_faces* skipped_out = nullptr)
+{
+  Ply_skipped_faces skipped_local;
+  Ply_skipped_faces& skipped = skipped_out ? *skipped_out : skipped_local;
   Text_cursor c(buf.begin(), buf.end(), '\0');
   auto fail_line = [&](Status s, const std::string& why) {
     return err.set(s, path + ":" + std::to_string(c.line) + ": " + why);
@@ -177,8 +209,10 @@ inline bool read_ply(const File_buffer& buf, const std::string& path, Raw_soup& 
         if (prop.name == "z") prop.role = 2;
       }
       if (e.name == "face" && prop.is_list() &&
-          (prop.name == "vertex_indices" || prop.name == "vertex_index"))
-        prop.role = 3;
+          (prop.name == "vertex_indices" || prop.name == "vertex_index") &&
+          std::none_of(e.properties.begin(), e.properties.end(),
+                       [](const Ply_property& q) { return q.role == 3; }))
+        prop.role = 3;  // the first of them when a file has both
       e.properties.push_back(std::move(prop));
     } else if (kw == "end_header") {
       c.skip_line();
@@ -232,6 +266,7 @@ inline bool read_ply(const File_buffer& buf, const std::string& path, Raw_soup& 
         double xyz[3] = {0, 0, 0};
         std::size_t line = 0;
         bool polygon = false;
+        const std::size_t first_corner = soup.indices.size();
         for (const Ply_property& prop : e.properties) {
           c.skip_ws();
           if (c.at_end())
@@ -268,7 +303,7 @@ inline bool read_ply(const File_buffer& buf, const std::string& path, Raw_soup& 
           }
         }
         if (is_vertex) soup.add_point(xyz[0], xyz[1], xyz[2], line);
-        if (polygon) soup.end_polygon(line);
+        if (polygon) end_ply_face(soup, first_corner, i, line, skipped);
       }
     }
     return true;
@@ -314,6 +349,7 @@ inline bool read_ply(const File_buffer& buf, const std::string& path, Raw_soup& 
     for (std::uint64_t i = 0; i < e.count; ++i) {
       double xyz[3] = {0, 0, 0};
       bool polygon = false;
+      const std::size_t first_corner = soup.indices.size();
       for (const Ply_property& prop : e.properties) {
         if (prop.is_list()) {
           if (!in.has(ply_size(prop.count_type))) return truncated(i);
@@ -339,7 +375,7 @@ inline bool read_ply(const File_buffer& buf, const std::string& path, Raw_soup& 
         }
       }
       if (is_vertex) soup.add_point(xyz[0], xyz[1], xyz[2]);
-      if (polygon) soup.end_polygon();
+      if (polygon) end_ply_face(soup, first_corner, i, 0, skipped);
     }
   }
   return true;

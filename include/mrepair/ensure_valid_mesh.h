@@ -1,0 +1,368 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_ENSURE_VALID_MESH_H
+#define MREPAIR_ENSURE_VALID_MESH_H
+
+#include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+#include <mrepair/parameters.h>
+#include <mrepair/report.h>
+#include <mrepair/status.h>
+
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/properties.h>
+#include <CGAL/Kernel/global_functions.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/Polygon_mesh_processing/repair.h>
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+/// \file ensure_valid_mesh.h
+/// The last step of every mrepair command and pipeline: whatever the steps
+/// before did, the output has no exactly degenerate face (collinear by the
+/// kernel's exact predicate, or with two equal points), no duplicate face
+/// and no non-manifold vertex. Degenerate faces are fixed by operations that
+/// change no geometry where possible (collapse of a zero-length edge, flip of
+/// a cap's longest edge, removal of a zero-area border face), then by the
+/// collapse of a cap's middle vertex onto the nearer end of its edge.
+
+MREPAIR_ADD_NAMED_PARAMETER(max_validity_operations)  // operation cap (10 x degenerate faces + 1000)
+
+namespace mrepair {
+
+/// \ingroup mrepair_core
+/// what `ensure_valid_mesh()` found and did.
+struct Validity_result
+{
+  Status status = Status::ok;
+  std::string message;
+  std::size_t degenerate_faces_found = 0;
+  std::size_t zero_length_edges_collapsed = 0;  ///< no vertex moves
+  std::size_t caps_flipped = 0;                 ///< no vertex moves
+  std::size_t border_faces_removed = 0;         ///< zero-area faces on a border
+  std::size_t cap_vertices_collapsed = 0;       ///< a cap's middle vertex moved to an end of its edge
+  std::size_t duplicate_faces_removed = 0;
+  std::size_t non_manifold_vertices_split = 0;  ///< vertices added by the split
+  std::size_t faces_removed_degenerate = 0;     ///< faces removed by the collapses and removals above
+  std::size_t degenerate_faces_left = 0;
+  std::size_t operations = 0;
+
+  std::size_t faces_removed() const { return faces_removed_degenerate + duplicate_faces_removed; }
+
+  void to_report(Report& r) const
+  {
+    r.add("status", status);
+    if (!message.empty()) r.add("message", message);
+    r.add("degenerate_faces_found", degenerate_faces_found);
+    r.add("zero_length_edges_collapsed", zero_length_edges_collapsed);
+    r.add("caps_flipped", caps_flipped);
+    r.add("border_faces_removed", border_faces_removed);
+    r.add("cap_vertices_collapsed", cap_vertices_collapsed);
+    r.add("faces_removed_degenerate", faces_removed_degenerate);
+    r.add("duplicate_faces_removed", duplicate_faces_removed);
+    r.add("non_manifold_vertices_split", non_manifold_vertices_split);
+    r.add("degenerate_faces_left", degenerate_faces_left);
+  }
+};
+
+namespace internal {
+namespace validity {
+
+template <typename PM, typename VPM>
+class Degeneracy_fixer
+{
+  using GT = boost::graph_traits<PM>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+  using Point = typename boost::property_traits<VPM>::value_type;
+
+  PM& pm_;
+  VPM vpm_;
+  std::set<face_descriptor> queue_;  // ordered by handle: safe to erase before a removal
+
+public:
+  Validity_result& r;
+
+  Degeneracy_fixer(PM& pm, VPM vpm, Validity_result& result) : pm_(pm), vpm_(vpm), r(result) {}
+
+  bool finite(face_descriptor f) const
+  {
+    for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_))
+      if (!clean_pipeline::is_finite_point(vpm_, v)) return false;
+    return true;
+  }
+
+  bool degenerate(face_descriptor f) const
+  {
+    if (!finite(f)) return false;  // exact predicates need finite input: left to the caller
+    const halfedge_descriptor h = halfedge(f, pm_);
+    const Point& a = get(vpm_, source(h, pm_));
+    const Point& b = get(vpm_, target(h, pm_));
+    const Point& c = get(vpm_, target(next(h, pm_), pm_));
+    return a == b || b == c || a == c || CGAL::collinear(a, b, c);
+  }
+
+  std::size_t run(std::size_t cap)
+  {
+    for (face_descriptor f : faces(pm_))
+      if (degenerate(f)) queue_.insert(f);
+    r.degenerate_faces_found = queue_.size();
+    const std::size_t budget = cap ? cap : 10 * queue_.size() + 1000;
+    std::set<face_descriptor> stuck;
+    while (!queue_.empty() && r.operations < budget) {
+      const face_descriptor f = *queue_.begin();
+      queue_.erase(queue_.begin());
+      if (!degenerate(f)) continue;
+      ++r.operations;
+      if (!fix(f)) stuck.insert(f);
+    }
+    // faces left: those that could not be fixed and those the cap cut off
+    std::size_t left = 0;
+    for (face_descriptor f : faces(pm_))
+      if (degenerate(f)) ++left;
+    return left;
+  }
+
+private:
+  double sqdist(vertex_descriptor u, vertex_descriptor v) const
+  {
+    const clean_pipeline::Vec3 d =
+        clean_pipeline::sub(clean_pipeline::point(vpm_, u), clean_pipeline::point(vpm_, v));
+    return clean_pipeline::dot(d, d);
+  }
+
+  void forget_faces_of_edge(halfedge_descriptor h)
+  {
+    if (!is_border(h, pm_)) queue_.erase(face(h, pm_));
+    if (!is_border(opposite(h, pm_), pm_)) queue_.erase(face(opposite(h, pm_), pm_));
+  }
+
+  void requeue_around(vertex_descriptor v)
+  {
+    for (halfedge_descriptor k : CGAL::halfedges_around_target(halfedge(v, pm_), pm_))
+      if (!is_border(k, pm_) && degenerate(face(k, pm_))) queue_.insert(face(k, pm_));
+  }
+
+  // Collapses the edge of `h` keeping position `p`; true when done.
+  bool collapse(halfedge_descriptor h, const Point& p, bool check_geometry)
+  {
+    if (!CGAL::Euler::does_satisfy_link_condition(edge(h, pm_), pm_)) return false;
+    const vertex_descriptor a = source(h, pm_), b = target(h, pm_);
+    if (check_geometry) {
+      // no surviving face may turn over or become degenerate
+      for (vertex_descriptor v : {a, b})
+        for (halfedge_descriptor k : CGAL::halfedges_around_target(halfedge(v, pm_), pm_)) {
+          if (is_border(k, pm_)) continue;
+          const face_descriptor f = face(k, pm_);
+          if (f == face(h, pm_) || (!is_border(opposite(h, pm_), pm_) &&
+                                    f == face(opposite(h, pm_), pm_)))
+            continue;
+          std::array<Point, 3> q;
+          std::array<Point, 3> old;
+          int i = 0;
+          for (vertex_descriptor u : CGAL::vertices_around_face(halfedge(f, pm_), pm_)) {
+            old[i] = get(vpm_, u);
+            q[i] = (u == a || u == b) ? p : get(vpm_, u);
+            ++i;
+          }
+          if (q[0] == q[1] || q[1] == q[2] || q[0] == q[2] || CGAL::collinear(q[0], q[1], q[2]))
+            return false;
+          const clean_pipeline::Vec3 n0 = normal(old), n1 = normal(q);
+          if (!(clean_pipeline::dot(n0, n1) > 0.)) return false;
+        }
+    }
+    std::size_t removed = 0;
+    if (!is_border(h, pm_)) ++removed;
+    if (!is_border(opposite(h, pm_), pm_)) ++removed;
+    forget_faces_of_edge(h);
+    const vertex_descriptor kept = CGAL::Euler::collapse_edge(edge(h, pm_), pm_);
+    put(vpm_, kept, p);
+    r.faces_removed_degenerate += removed;
+    requeue_around(kept);
+    return true;
+  }
+
+  static clean_pipeline::Vec3 normal(const std::array<Point, 3>& q)
+  {
+    clean_pipeline::Vec3 p[3];
+    for (int i = 0; i < 3; ++i)
+      p[i] = {CGAL::to_double(q[i].x()), CGAL::to_double(q[i].y()), CGAL::to_double(q[i].z())};
+    return clean_pipeline::cross(clean_pipeline::sub(p[1], p[0]), clean_pipeline::sub(p[2], p[0]));
+  }
+
+  bool fix(face_descriptor f)
+  {
+    // 1. a zero-length edge: collapse it, nothing moves
+    for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, pm_), pm_))
+      if (get(vpm_, source(h, pm_)) == get(vpm_, target(h, pm_))) {
+        const Point p = get(vpm_, target(h, pm_));
+        if (collapse(h, p, false)) {
+          ++r.zero_length_edges_collapsed;
+          return true;
+        }
+      }
+    // 2. a cap: the middle vertex c faces the longest edge ab
+    halfedge_descriptor ab = halfedge(f, pm_);
+    double best = -1.;
+    for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, pm_), pm_)) {
+      const double l = sqdist(source(h, pm_), target(h, pm_));
+      if (l > best) { best = l; ab = h; }
+    }
+    const vertex_descriptor a = source(ab, pm_), b = target(ab, pm_),
+                            c = target(next(ab, pm_), pm_);
+    const halfedge_descriptor ba = opposite(ab, pm_);
+    if (!is_border(ba, pm_)) {
+      // the triangle across ab is split at c by the flip: no vertex moves
+      const vertex_descriptor d = target(next(ba, pm_), pm_);
+      if (d != c && !halfedge(c, d, pm_).second) {
+        const face_descriptor g = face(ba, pm_);
+        CGAL::Euler::flip_edge(ab, pm_);
+        ++r.caps_flipped;
+        for (face_descriptor x : {f, g})
+          if (degenerate(x)) queue_.insert(x);
+        return true;
+      }
+    } else if (!clean_pipeline::is_border_vertex(c, pm_)) {
+      // a zero-area face on the border: removing it loses no surface, and c
+      // (interior so far) joins the border without a pinch
+      queue_.erase(f);
+      CGAL::Euler::remove_face(halfedge(f, pm_), pm_);
+      ++r.border_faces_removed;
+      ++r.faces_removed_degenerate;
+      return true;
+    }
+    // 3. move c onto the nearer end of ab (it lies on the segment)
+    const halfedge_descriptor ca = prev(ab, pm_);  // c -> a
+    const halfedge_descriptor bc = next(ab, pm_);  // b -> c
+    const bool to_a = sqdist(c, a) <= sqdist(c, b);
+    const halfedge_descriptor e = to_a ? ca : bc;
+    const Point target_point = get(vpm_, to_a ? a : b);
+    if (collapse(e, target_point, true)) {
+      ++r.cap_vertices_collapsed;
+      return true;
+    }
+    const halfedge_descriptor e2 = to_a ? bc : ca;
+    if (collapse(e2, get(vpm_, to_a ? b : a), true)) {
+      ++r.cap_vertices_collapsed;
+      return true;
+    }
+    return false;
+  }
+};
+
+}  // namespace validity
+}  // namespace internal
+
+/// \ingroup mrepair_core
+/// the last check of every mrepair pipeline: fixes exactly degenerate
+/// faces, duplicate faces and non-manifold vertices of a triangle mesh, and
+/// says what is left.
+///
+/// \code
+/// queue every exactly degenerate face (two equal points, or collinear)
+/// while the queue is not empty and the operation cap is not reached:
+///   a zero-length edge: collapse it (nothing moves)
+///   else, with ab the longest edge and c the middle vertex:
+///     ab interior and c not yet joined to the far vertex d: flip ab
+///       (splits the triangle across ab at c; nothing moves)
+///     ab on the border and c interior: remove the zero-area face
+///     else collapse c onto the nearer of a and b when no face turns over
+///   queue the faces this made degenerate
+/// remove duplicate faces (two faces on the same three vertices: both when
+///   they form a closed two-face pillow, else one)
+/// split non-manifold vertices (CGAL::PMP::duplicate_non_manifold_vertices)
+/// \endcode
+/// Faces with a non-finite point are skipped (the exact predicates need
+/// finite input).
+///
+/// \tparam PolygonMesh model of `MutableFaceGraph`, a triangle mesh
+/// \param np optional: `vertex_point_map`, `max_validity_operations`
+///   (default 10 x degenerate faces + 1000)
+/// \return `Validity_result`: `ok`, `partial` (degenerate faces left, counted
+///   and named in `message`), `invalid_mesh` (not a triangle mesh; untouched)
+template <typename PolygonMesh,
+          typename NamedParameters = CGAL::parameters::Default_named_parameters>
+Validity_result ensure_valid_mesh(PolygonMesh& pmesh,
+                                  const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using GT = boost::graph_traits<PolygonMesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+  auto vpm = CGAL::parameters::choose_parameter(
+      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+      get_property_map(CGAL::vertex_point, pmesh));
+  const std::size_t cap = internal::get_or(np, internal_np::max_validity_operations, std::size_t(0));
+  Validity_result r;
+  if (faces(pmesh).size() == 0) return r;
+  if (!CGAL::is_triangle_mesh(pmesh)) {
+    r.status = Status::invalid_mesh;
+    r.message = "ensure_valid_mesh needs a triangle mesh";
+    return r;
+  }
+  internal::validity::Degeneracy_fixer<PolygonMesh, decltype(vpm)> fixer(pmesh, vpm, r);
+  r.degenerate_faces_left = fixer.run(cap);
+
+  // Duplicate faces: the same three vertices.
+  {
+    auto index = get(CGAL::dynamic_vertex_property_t<std::size_t>(), pmesh);
+    std::size_t i = 0;
+    for (vertex_descriptor v : vertices(pmesh)) put(index, v, i++);
+    std::map<std::array<std::size_t, 3>, face_descriptor> seen;
+    std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
+    for (face_descriptor f : faces(pmesh)) {
+      std::array<std::size_t, 3> key{};
+      int k = 0;
+      for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pmesh), pmesh))
+        if (k < 3) key[k++] = get(index, v);
+      std::sort(key.begin(), key.end());
+      auto ins = seen.emplace(key, f);
+      if (!ins.second) pairs.emplace_back(ins.first->second, f);
+    }
+    std::set<face_descriptor> gone;
+    for (const auto& pr : pairs) {
+      if (gone.count(pr.first) || gone.count(pr.second)) continue;
+      bool pillow = true;  // every edge of the first is shared with the second
+      for (auto h : CGAL::halfedges_around_face(halfedge(pr.first, pmesh), pmesh))
+        if (is_border(opposite(h, pmesh), pmesh) || face(opposite(h, pmesh), pmesh) != pr.second)
+          pillow = false;
+      if (pillow) {
+        gone.insert(pr.first);
+        gone.insert(pr.second);
+        CGAL::Euler::remove_face(halfedge(pr.first, pmesh), pmesh);
+        CGAL::Euler::remove_face(halfedge(pr.second, pmesh), pmesh);
+        r.duplicate_faces_removed += 2;
+      } else {
+        auto fmark = get(CGAL::dynamic_face_property_t<char>(), pmesh);
+        for (face_descriptor f : faces(pmesh)) put(fmark, f, char(0));
+        std::vector<face_descriptor> doomed(1, pr.second);
+        std::size_t extra = 0;
+        for (face_descriptor f : doomed) gone.insert(f);
+        // faces removed to avoid a pinch are listed in `doomed` afterwards
+        r.duplicate_faces_removed +=
+            internal::clean_pipeline::remove_faces_without_pinches(pmesh, doomed, fmark, extra);
+        for (face_descriptor f : doomed) gone.insert(f);
+      }
+    }
+  }
+
+  r.non_manifold_vertices_split = CGAL::Polygon_mesh_processing::duplicate_non_manifold_vertices(
+      pmesh, CGAL::parameters::vertex_point_map(vpm));
+
+  if (r.degenerate_faces_left > 0) {
+    r.status = Status::partial;
+    r.message = std::to_string(r.degenerate_faces_left) +
+                " exactly degenerate faces left (no collapse, flip or removal keeps the mesh valid)";
+  }
+  return r;
+}
+
+}  // namespace mrepair
+
+#endif  // MREPAIR_ENSURE_VALID_MESH_H

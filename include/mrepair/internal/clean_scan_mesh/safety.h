@@ -1,0 +1,115 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Measures behind the safety policy of the cleaning steps (doc/guarantees.md,
+// "What cleaning never does"): face-connected components with their face
+// counts and areas, the turning of a boundary loop (jagged or clean), and the
+// area of the cap that would close a loop (hole or sheet border).
+#ifndef MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SAFETY_H
+#define MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SAFETY_H
+
+#include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/properties.h>
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace mrepair {
+namespace internal {
+namespace clean_pipeline {
+
+/// Face-connected components: `id` (a face property of std::size_t) gets the
+/// component index of every face; `faces_of[c]` and `area_of[c]` the face
+/// count and area of component c. Linear time.
+template <typename PM, typename VPM, typename FaceId>
+std::size_t label_components(const PM& pm, const VPM& vpm, FaceId& id,
+                             std::vector<std::size_t>& faces_of, std::vector<double>& area_of)
+{
+  using face_descriptor = typename boost::graph_traits<PM>::face_descriptor;
+  const std::size_t none = std::size_t(-1);
+  faces_of.clear();
+  area_of.clear();
+  for (face_descriptor f : faces(pm)) put(id, f, none);
+  std::vector<face_descriptor> queue;
+  for (face_descriptor seed : faces(pm)) {
+    if (get(id, seed) != none) continue;
+    const std::size_t c = faces_of.size();
+    faces_of.push_back(0);
+    area_of.push_back(0.);
+    queue.assign(1, seed);
+    put(id, seed, c);
+    while (!queue.empty()) {
+      face_descriptor f = queue.back();
+      queue.pop_back();
+      ++faces_of[c];
+      const double a = 0.5 * norm(face_normal(halfedge(f, pm), pm, vpm));
+      if (std::isfinite(a)) area_of[c] += a;
+      for (auto h : CGAL::halfedges_around_face(halfedge(f, pm), pm)) {
+        auto o = opposite(h, pm);
+        if (is_border(o, pm)) continue;
+        face_descriptor n = face(o, pm);
+        if (get(id, n) == none) {
+          put(id, n, c);
+          queue.push_back(n);
+        }
+      }
+    }
+  }
+  return faces_of.size();
+}
+
+/// Total absolute turning (radians) of the boundary loop of border halfedge
+/// `h`: the sum over its vertices of the angle between the incoming and the
+/// outgoing edge. A simple convex planar loop turns 2 pi; a straight or
+/// smoothly curved one (a sheet's border, a CAD patch edge) stays near that;
+/// a jagged scan border zigzags at every few vertices and turns many times
+/// more.
+template <typename PM, typename VPM>
+double loop_turning(typename boost::graph_traits<PM>::halfedge_descriptor h, const PM& pm,
+                    const VPM& vpm)
+{
+  double total = 0.;
+  for (auto g : CGAL::halfedges_around_face(h, pm)) {
+    const Vec3 a = point(vpm, source(g, pm)), b = point(vpm, target(g, pm)),
+               c = point(vpm, target(next(g, pm), pm));
+    const Vec3 u = sub(b, a), w = sub(c, b);
+    const double lu = norm(u), lw = norm(w);
+    if (!(lu > 0.) || !(lw > 0.)) continue;
+    double cs = dot(u, w) / (lu * lw);
+    cs = std::max(-1., std::min(1., cs));
+    total += std::acos(cs);
+  }
+  return total;
+}
+
+/// Area of the fan from the centroid of the loop of border halfedge `h` to
+/// its edges: the area of a cap that closes the loop (exact for a planar
+/// convex loop, an upper bound of the flattest cap otherwise, within the
+/// loop's non-planarity).
+template <typename PM, typename VPM>
+double loop_cap_area(typename boost::graph_traits<PM>::halfedge_descriptor h, const PM& pm,
+                     const VPM& vpm)
+{
+  Vec3 c{0, 0, 0};
+  std::size_t n = 0;
+  for (auto g : CGAL::halfedges_around_face(h, pm)) {
+    c = add(c, point(vpm, target(g, pm)));
+    ++n;
+  }
+  if (n == 0) return 0.;
+  c = mul(c, 1. / double(n));
+  double area = 0.;
+  for (auto g : CGAL::halfedges_around_face(h, pm)) {
+    const Vec3 a = point(vpm, source(g, pm)), b = point(vpm, target(g, pm));
+    area += 0.5 * norm(cross(sub(a, c), sub(b, c)));
+  }
+  return area;
+}
+
+}  // namespace clean_pipeline
+}  // namespace internal
+}  // namespace mrepair
+
+#endif  // MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SAFETY_H
