@@ -11,6 +11,7 @@
 #include <mrepair/adaptive_remesh.h>
 #include <mrepair/clean_boundaries.h>
 #include <mrepair/clean_scan_mesh.h>
+#include <mrepair/input_profile.h>
 #include <mrepair/close_gaps.h>
 #include <mrepair/fill_small_holes.h>
 #include <mrepair/inspect.h>
@@ -656,11 +657,19 @@ TYPED_TEST(Invariants, RandomSoupsThroughEveryCall)
     {
       run_mesh_call("clean_scan_mesh", mesh, in, tally, ctx, [&](Mesh& m) {
         const std::size_t f0 = nfaces(m);
+        // the random meshes are small: auto reads them as cad, so half the
+        // cases force the scan profile to reach every step
+        const mrepair::Input_profile profile =
+            chance(rng, 0.5) ? mrepair::Input_profile::scan : mrepair::Input_profile::automatic;
         mrepair::Scan_cleaning_result r = mrepair::clean_scan_mesh(
-            m, MP::min_component_faces(1 + pick(rng, 50), MP::max_hole_vertices(3 + pick(rng, 40))));
+            m, MP::min_component_faces(
+                   1 + pick(rng, 50),
+                   MP::max_hole_vertices(3 + pick(rng, 40), MP::input_profile(profile))));
         EXPECT_EQ(r.faces_before, f0) << ctx;
         if (mrepair::succeeded(r.status)) {
           EXPECT_EQ(r.faces_after, nfaces(m)) << ctx;
+          EXPECT_TRUE(r.faces_reconcile()) << ctx;
+          EXPECT_EQ(r.validity.degenerate_faces_left, 0u) << ctx;
           EXPECT_EQ(r.non_finite_vertices_removed, in.non_finite) << ctx;
           EXPECT_EQ(points_outside(m, in), 0u) << ctx;
         }

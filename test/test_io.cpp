@@ -10,6 +10,8 @@
 #include <CGAL/boost/graph/helpers.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -760,6 +762,385 @@ TEST(Io_stl, ascii_merging_nan_and_errors)
   EXPECT_NE(t.r.message.find(":4:"), std::string::npos) << t.r.message;
 }
 
+// ---- what real exporters write ------------------------------------------------
+
+TEST(Io_obj, line_continuation_joins_any_record)
+{
+  const std::string text = "# exported with continuations\n"
+                           "mtllib scene.mtl\n"
+                           "o thing\n"
+                           "v 0 0 0\n"
+                           "v 1 0 \\\n"
+                           "0\n"
+                           "v 1 1 \\  \r\n"  // blanks after the backslash, CRLF
+                           "  0\r\n"
+                           "v 0 1 0\n"
+                           "g a \\\n"
+                           "  b\n"
+                           "usemtl red\n"
+                           "f 1 2 \\\n"
+                           "3 4\n"
+                           "# a comment ending in a backslash does not continue \\\n"
+                           "f 1 2 3 # nor does a face whose comment ends in one \\\n"
+                           "f 1 \\\n"
+                           "\\\n"  // a line holding only a backslash continues too
+                           "2 \\\n"
+                           "3\n"
+                           "v \\\n"
+                           " 2 0 0\n"
+                           "f -4 -1 \\\n"
+                           "-3\n"
+                           "f 1 2 3 \\";  // at the end of the file, without a newline
+  Read x = read(write_file("continued.obj", text));
+  ASSERT_EQ(x.r.status, Status::ok) << x.r.message;
+  EXPECT_EQ(x.points, (std::vector<Point>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}}));
+  EXPECT_EQ(x.polygons, (std::vector<Polygon>{
+                            {0, 1, 2, 3}, {0, 1, 2}, {0, 1, 2}, {1, 4, 2}, {0, 1, 2}}));
+
+  // errors name the first line of a continued record, and later lines keep
+  // their numbers
+  Read e = read(write_file("continued_bad.obj", "v 0 0 0\nf 1 \\\n2 x\n"));
+  expect_cleared(e, Status::parse_error);
+  EXPECT_NE(e.r.message.find(":2:"), std::string::npos) << e.r.message;
+  e = read(write_file("continued_bad2.obj", "v 0 0 0\nv 1 \\\n0 \\\n0\nv 0 1 0\nf 1 2 y\n"));
+  expect_cleared(e, Status::parse_error);
+  EXPECT_NE(e.r.message.find(":6:"), std::string::npos) << e.r.message;
+  // invalid polygons are located the same way
+  Read b = read(write_file("continued_idx.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n\\\n\nf 1 2 \\\n9\n"));
+  EXPECT_EQ(b.r.status, Status::invalid_index);
+  EXPECT_NE(b.r.message.find(":6:"), std::string::npos) << b.r.message;
+}
+
+TEST(Io_obj, exporter_records_and_corner_forms)
+{
+  // what Blender, 3ds Max and MeshLab write: a header comment, mtllib,
+  // objects and groups, smoothing groups, materials, vt/vn and every corner form
+  Read x = read(write_file("exporter.obj",
+                           "# Blender v2.93 OBJ File\nmtllib cube.mtl\no Cube\n"
+                           "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 1\n"
+                           "vt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 -1\nvn 0 -1 0.5\n"
+                           "g side\nusemtl Material.001\ns 1\n"
+                           "f 1/1/2 2/2/2 5/3/2\n"           // v/vt/vn
+                           "f 2//2 3//2 5//2\n"              // v//vn
+                           "f -3/-3/-1 -2/-2/-1 -1/-1/-1\n"  // relative v/vt/vn
+                           "f -2//-1 -5//-1 -1//-1\n"        // relative v//vn
+                           "g base\nusemtl Material.002\ns off\n"
+                           "f 1/1 4/2 3/3 2/1\n"            // v/vt
+                           "o Pentagon\nf 1// 2// 3// 4// 5//\n"  // trailing slashes
+                           "f 1/ 2/ 3/\n"));
+  ASSERT_EQ(x.r.status, Status::ok) << x.r.message;
+  EXPECT_EQ(x.points.size(), 5u);
+  EXPECT_EQ(x.polygons, (std::vector<Polygon>{{0, 1, 4},
+                                              {1, 2, 4},
+                                              {2, 3, 4},
+                                              {3, 0, 4},
+                                              {0, 3, 2, 1},
+                                              {0, 1, 2, 3, 4},
+                                              {0, 1, 2}}));
+}
+
+TYPED_TEST(Io_mesh, exporter_obj_files_read_as_meshes)
+{
+  using Mesh = typename TypeParam::Mesh;
+  // the non-planar pentagon of issue 15, as a lone face
+  const std::string pentagon =
+      write_file("pentagon.obj", "o p\nv 0 0 0\nv 1 0 0.2\nv 1.3 1 0\nv 0.5 1.6 0.3\nv -0.3 1 0\n"
+                                 "s off\nf 1// 2// 3// 4// 5//\n");
+  Mesh m;
+  Io_result r = mrepair::read_polygon_mesh(pentagon, m);
+  ASSERT_EQ(r.status, Status::ok) << r.message;
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  ASSERT_EQ(face_count(m), 1u);
+  EXPECT_EQ(CGAL::degree(*faces(m).begin(), m), 5u);
+
+  // a closed pyramid written with continuations and relative v/vt/vn corners
+  const std::string pyramid =
+      write_file("pyramid.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 1\nvt 0 0\nvn 0 0 1\n"
+                                "usemtl m\nf -5/1/1 -2/1/1 \\\n -3/1/1 -4/1/1\n"
+                                "f 1//1 2//1 5//1\nf 2//1 3//1 5//1\nf 3/1/1 4/1/1 \\\n5/1/1\n"
+                                "f -2 \\\n -5 \\\n -1\n");
+  Mesh p;
+  r = mrepair::read_polygon_mesh(pyramid, p);
+  ASSERT_EQ(r.status, Status::ok) << r.message;
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(p));
+  EXPECT_TRUE(CGAL::is_closed(p));
+  EXPECT_EQ(vertices(p).size(), 5u);
+  EXPECT_EQ(face_count(p), 5u);
+}
+
+/// appends `v` as a PLY value of `type`: text (with a trailing space) when
+/// `encoding` is 0 (ascii) or 3 (ascii with CRLF), else binary little (1) or big (2) endian.
+void append_ply_value(std::string& s, const std::string& type, double v, int encoding)
+{
+  if (encoding == 0 || encoding == 3) {
+    char tmp[64];
+    const bool floating = type == "float" || type == "float32" || type == "double" ||
+                          type == "float64";
+    std::snprintf(tmp, sizeof tmp, floating ? "%.17g " : "%.0f ", v);
+    s += tmp;
+    return;
+  }
+  const bool big = encoding == 2;
+  if (type == "char" || type == "int8") append_raw<std::int8_t>(s, static_cast<std::int8_t>(v), big);
+  else if (type == "uchar" || type == "uint8") append_raw<std::uint8_t>(s, static_cast<std::uint8_t>(v), big);
+  else if (type == "short" || type == "int16") append_raw<std::int16_t>(s, static_cast<std::int16_t>(v), big);
+  else if (type == "ushort" || type == "uint16") append_raw<std::uint16_t>(s, static_cast<std::uint16_t>(v), big);
+  else if (type == "int" || type == "int32") append_raw<std::int32_t>(s, static_cast<std::int32_t>(v), big);
+  else if (type == "uint" || type == "uint32") append_raw<std::uint32_t>(s, static_cast<std::uint32_t>(v), big);
+  else if (type == "float" || type == "float32") append_raw<float>(s, static_cast<float>(v), big);
+  else if (type == "double" || type == "float64") append_raw<double>(s, v, big);
+  else ADD_FAILURE() << "unknown PLY type " << type;
+}
+
+/// a PLY as exporters write it: vertices with normals and RGBA colors, faces
+/// with a `flags` property before or after the index list (of the given count
+/// and index types) and a texcoord list, an `edge` element, and a `material`
+/// element before or after the rest. `encoding` as for `append_ply_value`.
+struct Exporter_ply
+{
+  int encoding = 0;
+  std::string count_type = "uchar";
+  std::string index_type = "int";
+  bool flags_after = false;
+  bool material_first = false;
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::vector<int>> faces;
+
+  std::string bytes() const
+  {
+    static const char* const formats[] = {"ascii", "binary_little_endian", "binary_big_endian",
+                                          "ascii"};
+    const std::string nl = encoding == 3 ? "\r\n" : "\n";
+    const bool text = encoding == 0 || encoding == 3;
+    std::string h = "ply" + nl + "format " + formats[encoding] + " 1.0" + nl +
+                    "comment exported by a test" + nl;
+    const std::string material = "element material 1" + nl + "property uchar ambient_red" + nl +
+                                 "property float shininess" + nl;
+    if (material_first) h += material;
+    h += "element vertex " + std::to_string(points.size()) + nl;
+    for (const char* p : {"float x", "float y", "float z", "float nx", "float ny", "float nz",
+                          "uchar red", "uchar green", "uchar blue", "uchar alpha"})
+      h += std::string("property ") + p + nl;
+    h += "element face " + std::to_string(faces.size()) + nl;
+    if (!flags_after) h += "property int flags" + nl;
+    h += "property list " + count_type + " " + index_type + " vertex_indices" + nl;
+    if (flags_after) h += "property int flags" + nl;
+    h += "property list uchar float texcoord" + nl;
+    h += "element edge 2" + nl + "property int vertex1" + nl + "property int vertex2" + nl +
+         "property uchar red" + nl;
+    if (!material_first) h += material;
+    h += "end_header" + nl;
+
+    std::string b;
+    auto end_record = [&] {
+      if (text) b += nl;
+    };
+    auto add_material = [&] {
+      append_ply_value(b, "uchar", 200, encoding);
+      append_ply_value(b, "float", 0.5, encoding);
+      end_record();
+    };
+    if (material_first) add_material();
+    for (const auto& p : points) {
+      for (double c : p) append_ply_value(b, "float", c, encoding);
+      for (double n : {0.0, 0.0, 1.0}) append_ply_value(b, "float", n, encoding);
+      for (double c : {10.0, 20.0, 30.0, 255.0}) append_ply_value(b, "uchar", c, encoding);
+      end_record();
+    }
+    for (const auto& f : faces) {
+      if (!flags_after) append_ply_value(b, "int", 7, encoding);
+      append_ply_value(b, count_type, static_cast<double>(f.size()), encoding);
+      for (int i : f) append_ply_value(b, index_type, i, encoding);
+      if (flags_after) append_ply_value(b, "int", 7, encoding);
+      append_ply_value(b, "uchar", 2, encoding);
+      append_ply_value(b, "float", 0.25, encoding);
+      append_ply_value(b, "float", 0.75, encoding);
+      end_record();
+    }
+    for (int e = 0; e < 2; ++e) {
+      append_ply_value(b, "int", e, encoding);
+      append_ply_value(b, "int", e + 1, encoding);
+      append_ply_value(b, "uchar", 0, encoding);
+      end_record();
+    }
+    if (!material_first) add_material();
+    return h + b;
+  }
+  /// line of data record `k` of a text file (0-based: vertices, then faces;
+  /// a leading material record is accounted for).
+  std::size_t data_line(std::size_t k) const
+  {
+    const std::string b = bytes();
+    return static_cast<std::size_t>(
+               std::count(b.begin(), b.begin() + b.find("end_header") + 10, '\n')) +
+           2 + k + (material_first ? 1 : 0);
+  }
+};
+
+/// a closed square pyramid, apex last.
+Exporter_ply pyramid_ply()
+{
+  Exporter_ply e;
+  e.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 1}};
+  e.faces = {{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  return e;
+}
+
+const char* const ply_encodings[] = {"ascii", "binary_little_endian", "binary_big_endian",
+                                     "ascii_crlf"};
+
+TEST(Io_ply, every_count_and_index_type_with_exporter_properties)
+{
+  const std::vector<Point> points{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 1}};
+  const std::vector<Polygon> polygons{{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  int combination = 0;
+  for (int encoding = 0; encoding < 4; ++encoding)
+    for (const char* count : {"uchar", "uint8", "char", "int8", "ushort", "uint16", "short",
+                              "int16", "uint", "uint32", "int", "int32"})
+      for (const char* index : {"char", "int8", "uchar", "uint8", "short", "int16", "ushort",
+                                "uint16", "int", "int32", "uint", "uint32"}) {
+        Exporter_ply e = pyramid_ply();
+        e.encoding = encoding;
+        e.count_type = count;
+        e.index_type = index;
+        e.flags_after = combination % 2 == 1;
+        e.material_first = combination % 3 == 0;
+        ++combination;
+        SCOPED_TRACE(std::string(ply_encodings[encoding]) + " list " + count + " " + index +
+                     (e.flags_after ? ", flags after" : ", flags before") +
+                     (e.material_first ? ", material first" : ", material last"));
+        Read x = read(write_file("types.ply", e.bytes()));
+        ASSERT_EQ(x.r.status, Status::ok) << x.r.message;
+        EXPECT_EQ(x.r.binary, encoding == 1 || encoding == 2);
+        EXPECT_EQ(x.points, points);
+        EXPECT_EQ(x.polygons, polygons);
+        EXPECT_EQ(x.r.polygons_skipped, 0u);
+        EXPECT_TRUE(x.r.message.empty()) << x.r.message;
+      }
+}
+
+TEST(Io_ply, faces_with_fewer_than_three_vertices_are_skipped_and_counted)
+{
+  for (int encoding = 0; encoding < 4; ++encoding) {
+    SCOPED_TRACE(ply_encodings[encoding]);
+    Exporter_ply e = pyramid_ply();
+    e.encoding = encoding;
+    e.count_type = encoding == 1 ? "ushort" : "uchar";
+    e.index_type = encoding == 2 ? "uint" : "int";
+    // counts 0, 1 and 2 between the real faces
+    e.faces = {{0, 3, 2, 1}, {}, {0, 1, 4}, {2}, {1, 2, 4}, {2, 3}, {2, 3, 4}, {3, 0, 4}};
+    const std::string path = write_file("short_faces.ply", e.bytes());
+    Read x = read(path);
+    ASSERT_EQ(x.r.status, Status::ok) << x.r.message;
+    EXPECT_EQ(x.r.polygons_skipped, 3u);
+    EXPECT_EQ(x.r.invalid_polygons, 0u);
+    EXPECT_EQ(x.points.size(), 5u);
+    EXPECT_EQ(x.polygons, (std::vector<Polygon>{{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4},
+                                                {3, 0, 4}}));
+    EXPECT_EQ(x.r.message.find('\n'), std::string::npos);
+    EXPECT_NE(x.r.message.find("3 face(s) with fewer than 3 vertices skipped (first is face 1)"),
+              std::string::npos)
+        << x.r.message;
+    const bool text = encoding == 0 || encoding == 3;
+    // ascii names the line of the first one (vertex records come first)
+    const std::string where = text ? path + ":" + std::to_string(e.data_line(5 + 1)) + ": "
+                                   : path + ": ";
+    EXPECT_EQ(x.r.message.rfind(where, 0), 0u) << x.r.message << " (want " << where << ")";
+
+    mrepair::Report rep;
+    x.r.to_report(rep);
+    EXPECT_EQ(rep.get("polygons_skipped"), "3");
+
+    // the mesh is built from the remaining faces
+    Surface_mesh m;
+    Io_result r = mrepair::read_polygon_mesh(path, m);
+    ASSERT_EQ(r.status, Status::ok) << r.message;
+    EXPECT_EQ(r.polygons_skipped, 3u);
+    EXPECT_EQ(face_count(m), 5u);
+    EXPECT_TRUE(CGAL::is_closed(m));
+    EXPECT_NE(r.message.find("skipped"), std::string::npos) << r.message;
+
+    // with an invalid index as well: that status wins, both are reported
+    e.faces = {{0, 3, 2, 1}, {0, 1}, {0, 1, 9}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+    Read y = read(write_file("short_and_bad.ply", e.bytes()));
+    EXPECT_EQ(y.r.status, Status::invalid_index) << y.r.message;
+    EXPECT_EQ(y.r.invalid_polygons, 1u);
+    EXPECT_EQ(y.r.polygons_skipped, 1u);
+    EXPECT_EQ(y.polygons.size(), 5u);
+    EXPECT_NE(y.r.message.find("1 invalid polygon(s)"), std::string::npos) << y.r.message;
+    EXPECT_NE(y.r.message.find("1 face(s) with fewer than 3 vertices skipped"), std::string::npos)
+        << y.r.message;
+    EXPECT_EQ(y.r.message.find('\n'), std::string::npos);
+  }
+}
+
+TEST(Io_point_cloud, vertices_without_faces_give_one_clear_line)
+{
+  Exporter_ply cloud = pyramid_ply();
+  cloud.faces.clear();
+  Exporter_ply cloud_binary = cloud;
+  cloud_binary.encoding = 1;
+  Exporter_ply only_short = pyramid_ply();
+  only_short.faces = {{0, 1}, {2}, {}};
+  struct Case
+  {
+    const char* name;
+    std::string bytes;
+    std::size_t vertices;
+  };
+  const Case cases[] = {
+      {"cloud.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n", 3},
+      {"cloud_noff.off", "NOFF\n2 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n", 2},
+      {"cloud.obj", "# scanner output\nv 0 0 0\nv 1 0 0\nvn 0 0 1\nv 0 1 0\nv 0 0 1\np 1 2 3 4\n", 4},
+      {"cloud_lines.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n", 2},
+      {"cloud_one.obj", "v 0 0 0\n", 1},
+      {"cloud.ply", cloud.bytes(), 5},
+      {"cloud_binary.ply", cloud_binary.bytes(), 5},
+      {"cloud_vertex_only.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\n"
+                                "property float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n", 2},
+      {"cloud_short_faces.ply", only_short.bytes(), 5},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string path = write_file(c.name, c.bytes);
+    const std::string want = path + ": no faces (a point cloud of " + std::to_string(c.vertices) +
+                             (c.vertices == 1 ? " vertex" : " vertices");
+    Read x = read(path);
+    expect_cleared(x, Status::empty_input);
+    EXPECT_EQ(x.r.message.rfind(want, 0), 0u) << x.r.message;
+    EXPECT_NE(x.r.message.find("); mrepair repairs surface meshes"), std::string::npos)
+        << x.r.message;
+
+    Surface_mesh m;
+    Io_result r = mrepair::read_polygon_mesh(path, m);
+    EXPECT_EQ(r.status, Status::empty_input);
+    EXPECT_EQ(r.message, x.r.message);
+    EXPECT_EQ(vertices(m).size(), 0u);
+
+    // what the commands print
+    mrepair::Report rep;
+    std::string error;
+    EXPECT_FALSE(mrepair::cli::load_mesh(path, m, rep, error));
+    EXPECT_EQ(error, x.r.message);
+    std::vector<Point> pts;
+    std::vector<Polygon> polys;
+    EXPECT_FALSE(mrepair::cli::load_soup(path, pts, polys, rep, error));
+    EXPECT_EQ(error, x.r.message);
+  }
+  // the PLY whose faces all have fewer than 3 vertices says so
+  Read s = read(temp_file("cloud_short_faces.ply"));
+  EXPECT_NE(s.r.message.find("3 face(s) with fewer than 3 vertices skipped"), std::string::npos)
+      << s.r.message;
+
+  // STL has no vertex outside a facet: an STL without facets is empty, not a cloud
+  for (const std::string& stl : {std::string("solid empty\nendsolid empty\n"),
+                                 two_triangle_stl("binary", 0).substr(0, 84)}) {
+    Read t = read(write_file("no_facets.stl", stl));
+    expect_cleared(t, Status::empty_input);
+    EXPECT_EQ(t.r.message.find("point cloud"), std::string::npos) << t.r.message;
+  }
+}
+
 // ---- no crash on arbitrary bytes ------------------------------------------------
 
 TEST(Io_robustness, random_bytes_and_truncations_never_crash)
@@ -802,6 +1183,7 @@ TEST(Io_report, to_report_has_every_field)
   EXPECT_EQ(rep.get("polygons"), "1");
   EXPECT_EQ(rep.get("non_finite_points"), "0");
   EXPECT_EQ(rep.get("invalid_polygons"), "0");
+  EXPECT_EQ(rep.get("polygons_skipped"), "0");
   EXPECT_EQ(rep.get("binary"), "false");
 }
 

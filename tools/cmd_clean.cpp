@@ -5,6 +5,7 @@
 #include "cli_io.h"
 
 #include <mrepair/clean_scan_mesh.h>
+#include <mrepair/input_profile.h>
 #include <mrepair/io.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -25,6 +26,7 @@ namespace cli = mrepair::cli;
 const std::vector<cli::Option>& clean_options()
 {
   static const std::vector<cli::Option> o = {
+      {"profile", true, "scan|cad|auto: the steps that apply (scan: this command's purpose)"},
       {"spike-angle", true, "dihedral angle (degrees) of a spiked vertex (default of relax_spikes: 100)"},
       {"max-hole", true, "holes with fewer boundary vertices are filled (100)"},
       {"min-component", true, "components with fewer faces are removed (400)"},
@@ -36,7 +38,7 @@ const std::vector<cli::Option>& clean_options()
       {"skip", true, "skip these steps (comma-separated): remove_degenerate_vertices, "
                      "relax_spikes, remove_unrelaxable_spikes, clean_boundaries, "
                      "remove_small_components, fill_small_holes, fix_near_degenerate_faces, "
-                     "relax_spikes_again"},
+                     "relax_spikes_again, ensure_valid_mesh"},
       {"binary", false, "write a binary file (PLY, STL)"}};
   return o;
 }
@@ -70,7 +72,11 @@ int run_clean(int argc, char** argv)
     cli::print_help(self, clean_options());
     return 0;
   }
-  unsigned mask = mrepair::clean_step_all;
+  mrepair::Input_profile profile = mrepair::Input_profile::scan;
+  if (a.has("profile") && !mrepair::parse_input_profile(a.get("profile"), profile))
+    throw cli::Usage_error("--profile must be scan, cad or auto");
+  unsigned mask = profile == mrepair::Input_profile::cad ? unsigned(mrepair::clean_steps_cad)
+                                                         : unsigned(mrepair::clean_step_all);
   if (a.has("only")) mask = parse_steps(a.get("only"));
   if (a.has("skip")) mask &= ~parse_steps(a.get("skip"));
   const double spike = a.get_double("spike-angle", std::numeric_limits<double>::quiet_NaN());
@@ -106,8 +112,10 @@ int run_clean(int argc, char** argv)
     return cli::fail(a.positional[0] + ": " + error);
   }
 
-  auto np = MP::clean_steps(
-      mask, MP::max_hole_vertices(
+  // with auto and no step list, the profile picks the steps
+  auto run = [&](const auto& steps_np) {
+    return mrepair::clean_scan_mesh(
+        mesh, MP::input_profile(profile, MP::max_hole_vertices(
                 max_hole, MP::min_component_faces(
                               min_comp, MP::max_clean_iterations(
                                             iterations, MP::boundary_dihedral_angle(
@@ -116,9 +124,14 @@ int run_clean(int argc, char** argv)
                                                                 density,
                                                                 MP::fair_hole_patches(
                                                                     a.has("fair"),
-                                                                    MP::spike_angle(spike))))))));
+                                                                    MP::spike_angle(spike, steps_np))))))))
+                  .visitor(std::ref(printer)));
+  };
   // spike_angle NaN (not given) means "the relax_spikes default" in the pipeline.
-  mrepair::Scan_cleaning_result r = mrepair::clean_scan_mesh(mesh, np.visitor(std::ref(printer)));
+  const bool profile_picks = profile == mrepair::Input_profile::automatic && !a.has("only") &&
+                             !a.has("skip");
+  mrepair::Scan_cleaning_result r = profile_picks ? run(CGAL::parameters::default_values())
+                                                  : run(MP::clean_steps(mask));
   in.to_report(report.section("input"));
   r.to_report(report.section("clean"));
   if (!mrepair::succeeded(r.status)) {

@@ -57,8 +57,8 @@ enum Clean_step : unsigned {
   clean_step_all = 0x1FFu,
   /// the steps of the `cad` profile: the geometry and the parts stay, holes
   /// are closed, validity is restored
-  clean_steps_cad = clean_step_remove_degenerate_vertices | clean_step_fill_small_holes |
-                    clean_step_ensure_valid
+  clean_steps_cad = clean_step_remove_degenerate_vertices | clean_step_remove_small_components |
+                    clean_step_fill_small_holes | clean_step_ensure_valid
 };
 
 constexpr std::size_t number_of_clean_steps = 9;
@@ -248,6 +248,7 @@ inline void add_totals(Hole_filling_result& a, const Hole_filling_result& b)
 {
   a.holes_found += b.holes_found;
   a.holes_too_large = b.holes_too_large;  // of the last run
+  a.sheet_borders = b.sheet_borders;      // of the last run
   a.holes_filled += b.holes_filled;
   a.aborted_fills += b.aborted_fills;
   a.enlargements += b.enlargements;
@@ -267,7 +268,9 @@ inline void add_totals(Hole_filling_result& a, const Hole_filling_result& b)
 /// \code
 /// profile <- input_profile, or classify_input(pmesh) when automatic
 /// steps <- clean_steps if given, else all for a scan and, for a CAD or
-///          print model, only: degenerate vertices, hole filling (Liepa's
+///          print model, only: degenerate vertices, open debris next to a
+///          closed largest component (remove_small_components with
+///          open_debris_only), hole filling (Liepa's
 ///          patch, no refinement, no enlargement, loops up to 500 vertices),
 ///          the final validity check
 /// remove non-finite vertices (with their faces) and isolated vertices
@@ -304,7 +307,7 @@ inline void add_totals(Hole_filling_result& a, const Hole_filling_result& b)
 ///   - `spike_angle` (double, degrees; default: that of `relax_spikes()`)
 ///   - `min_component_faces` (std::size_t, default 400), `relative_component_size` (0.01)
 ///   - `max_hole_vertices` (std::size_t, default 100; 500 for the cad profile),
-///     `max_hole_area_share` (0.25)
+///     `max_hole_area_share` (0.4)
 ///   - `jagged_loop_turning` (2), `boundary_erosion_share` (0.5): see `clean_boundaries()`
 ///   - `boundary_dihedral_angle` (double, degrees, default 120)
 ///   - `hole_density_factor` (double, default 1), `fair_hole_patches` (bool, default false)
@@ -351,7 +354,7 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
       !CGAL::parameters::is_default_parameter<NamedParameters,
                                               internal_np::max_hole_vertices_t>::value;
   std::size_t max_hole = internal::get_or(np, internal_np::max_hole_vertices, std::size_t(100));
-  const double hole_share = internal::get_or(np, internal_np::max_hole_area_share, 0.25);
+  const double hole_share = internal::get_or(np, internal_np::max_hole_area_share, 0.4);
   const double boundary_angle = internal::get_or(np, internal_np::boundary_dihedral_angle, 120.);
   const double jag_turning = internal::get_or(np, internal_np::jagged_loop_turning, 2.);
   const double erosion_share = internal::get_or(np, internal_np::boundary_erosion_share, 0.5);
@@ -511,7 +514,8 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
         run_step(4, [&]() {
           Small_components_result c = remove_small_components(
               pmesh, MP::min_component_faces(
-                         min_comp, MP::relative_component_size(relative_comp, obs_np)));
+                         min_comp, MP::relative_component_size(
+                                       relative_comp, MP::open_debris_only(cad, obs_np))));
           SC::add_totals(r.components, c);
           SC::Step_outcome o;
           o.status = c.status;

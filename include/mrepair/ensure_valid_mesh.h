@@ -45,7 +45,7 @@ struct Validity_result
   std::size_t degenerate_faces_found = 0;
   std::size_t zero_length_edges_collapsed = 0;  ///< no vertex moves
   std::size_t caps_flipped = 0;                 ///< no vertex moves
-  std::size_t border_faces_removed = 0;         ///< zero-area faces on a border
+  std::size_t border_faces_removed = 0;         ///< zero-area faces removed (on a border, or opening a slit)
   std::size_t cap_vertices_collapsed = 0;       ///< a cap's middle vertex moved to an end of its edge
   std::size_t duplicate_faces_removed = 0;
   std::size_t non_manifold_vertices_split = 0;  ///< vertices added by the split
@@ -151,8 +151,10 @@ private:
   }
 
   // Collapses the edge of `h` keeping position `p`; true when done.
-  bool collapse(halfedge_descriptor h, const Point& p, bool check_geometry)
+  // `check`: 0 none, 1 no surviving face may become degenerate, 2 nor turn over.
+  bool collapse(halfedge_descriptor h, const Point& p, int check)
   {
+    const bool check_geometry = check > 0;
     if (!CGAL::Euler::does_satisfy_link_condition(edge(h, pm_), pm_)) return false;
     const vertex_descriptor a = source(h, pm_), b = target(h, pm_);
     if (check_geometry) {
@@ -175,7 +177,7 @@ private:
           if (q[0] == q[1] || q[1] == q[2] || q[0] == q[2] || CGAL::collinear(q[0], q[1], q[2]))
             return false;
           const clean_pipeline::Vec3 n0 = normal(old), n1 = normal(q);
-          if (!(clean_pipeline::dot(n0, n1) > 0.)) return false;
+          if (check > 1 && !(clean_pipeline::dot(n0, n1) > 0.)) return false;
         }
     }
     std::size_t removed = 0;
@@ -203,7 +205,7 @@ private:
     for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, pm_), pm_))
       if (get(vpm_, source(h, pm_)) == get(vpm_, target(h, pm_))) {
         const Point p = get(vpm_, target(h, pm_));
-        if (collapse(h, p, false)) {
+        if (collapse(h, p, 0)) {
           ++r.zero_length_edges_collapsed;
           return true;
         }
@@ -244,13 +246,28 @@ private:
     const bool to_a = sqdist(c, a) <= sqdist(c, b);
     const halfedge_descriptor e = to_a ? ca : bc;
     const Point target_point = get(vpm_, to_a ? a : b);
-    if (collapse(e, target_point, true)) {
-      ++r.cap_vertices_collapsed;
-      return true;
-    }
     const halfedge_descriptor e2 = to_a ? bc : ca;
-    if (collapse(e2, get(vpm_, to_a ? b : a), true)) {
-      ++r.cap_vertices_collapsed;
+    const Point other_point = get(vpm_, to_a ? b : a);
+    // first without turning a face over; then, as a last resort (the mesh
+    // already folds there), without creating a degenerate face
+    for (int check : {2, 1}) {
+      if (collapse(e, target_point, check) || collapse(e2, other_point, check)) {
+        ++r.cap_vertices_collapsed;
+        return true;
+      }
+    }
+    // 4. no collapse satisfies the link condition (a tiny closed mesh where
+    // every vertex neighbours every other): remove the zero-area face when
+    // none of its vertices is on a border yet, so that no vertex is pinched;
+    // the mesh opens along a slit of zero width and loses no surface
+    bool inside = true;
+    for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_))
+      if (clean_pipeline::is_border_vertex(v, pm_)) inside = false;
+    if (inside) {
+      queue_.erase(f);
+      CGAL::Euler::remove_face(halfedge(f, pm_), pm_);
+      ++r.border_faces_removed;
+      ++r.faces_removed_degenerate;
       return true;
     }
     return false;
@@ -274,6 +291,9 @@ private:
 ///       (splits the triangle across ab at c; nothing moves)
 ///     ab on the border and c interior: remove the zero-area face
 ///     else collapse c onto the nearer of a and b when no face turns over
+///     (then onto the farther; then either, when no face becomes degenerate)
+///     else, when no vertex of the face is on a border, remove it (a slit of
+///     zero width opens; no surface is lost)
 ///   queue the faces this made degenerate
 /// remove duplicate faces (two faces on the same three vertices: both when
 ///   they form a closed two-face pillow, else one)

@@ -40,7 +40,7 @@ MREPAIR_ADD_NAMED_PARAMETER(fair_hole_patches)      // bool, fair patches after 
 MREPAIR_ADD_NAMED_PARAMETER(refine_hole_patches)    // bool, refine patches (true)
 MREPAIR_ADD_NAMED_PARAMETER(max_hole_enlargements)  // enlargements of an aborted fill (3)
 MREPAIR_ADD_NAMED_PARAMETER(hole_delaunay_above)    // loops with more vertices use the DT3 search space (30)
-MREPAIR_ADD_NAMED_PARAMETER(max_hole_area_share)    // a loop whose cap exceeds this share of its component's area is a border (0.25)
+MREPAIR_ADD_NAMED_PARAMETER(max_hole_area_share)    // a loop whose cap exceeds this share of its component's area is a border (0.4)
 
 namespace mrepair {
 
@@ -603,7 +603,7 @@ public:
 ///   - `refine_hole_patches` (bool, default true)
 ///   - `fair_hole_patches` (bool, default false): `CGAL::PMP::fair` on the patch interior
 ///   - `max_hole_enlargements` (std::size_t, default 3)
-///   - `max_hole_area_share` (double, default 0.25; 0: every small loop is a
+///   - `max_hole_area_share` (double, default 0.4; 0: every small loop is a
 ///     hole): a loop whose cap (the fan from its centroid) has more area than
 ///     this share of its component is a sheet's border and stays open
 ///   - `hole_delaunay_above` (std::size_t, default 30): loops with more vertices
@@ -632,7 +632,7 @@ Hole_filling_result fill_small_holes(PolygonMesh& pmesh,
       internal::get_or(np, internal_np::max_hole_enlargements, std::size_t(3));
   const std::size_t dt_above =
       internal::get_or(np, internal_np::hole_delaunay_above, std::size_t(30));
-  const double area_share = internal::get_or(np, internal_np::max_hole_area_share, 0.25);
+  const double area_share = internal::get_or(np, internal_np::max_hole_area_share, 0.4);
   if (!(density > 0.) || !std::isfinite(density) || !(area_share >= 0.)) {
     Hole_filling_result r;
     r.status = Status::invalid_parameter;

@@ -28,6 +28,7 @@
 /// largest component, which is never removed.
 
 MREPAIR_ADD_NAMED_PARAMETER(relative_component_size)  // share of the largest component (0.01)
+MREPAIR_ADD_NAMED_PARAMETER(open_debris_only)         // bool: only open bits next to a closed largest component (false)
 
 namespace mrepair {
 
@@ -124,7 +125,8 @@ Small_components_result remove_small_components_seeded(PM& pm, const VPM& vpm,
                                                        const FaceRange& seeds,
                                                        std::size_t threshold, double relative,
                                                        Observer* observer = nullptr,
-                                                       const Protect* protect = nullptr)
+                                                       const Protect* protect = nullptr,
+                                                       bool open_debris_only = false)
 {
   using face_descriptor = typename boost::graph_traits<PM>::face_descriptor;
   Small_components_result r;
@@ -143,6 +145,14 @@ Small_components_result remove_small_components_seeded(PM& pm, const VPM& vpm,
     if (faces_of[c] > faces_of[largest] ||
         (faces_of[c] == faces_of[largest] && area_of[c] > area_of[largest]))
       largest = c;
+  // Debris mode (print models): only open bits next to a closed largest
+  // component go, whatever their face count (a stray facet by a solid).
+  std::vector<char> open(open_debris_only ? faces_of.size() : 0, 0);
+  if (open_debris_only) {
+    for (auto h : halfedges(pm))
+      if (is_border(h, pm)) open[get(id, face(opposite(h, pm), pm))] = 1;
+    if (open[largest]) return r;
+  }
   const std::size_t nv = static_cast<std::size_t>(vertices(pm).size());
   for (std::size_t c = 0; c < n_comp; ++c) {
     const std::size_t label = get(id, small[offsets[c]]);
@@ -151,8 +161,13 @@ Small_components_result remove_small_components_seeded(PM& pm, const VPM& vpm,
       r.kept_largest = true;
       continue;
     }
-    if (!(double(nf) < relative * double(faces_of[largest])) ||
-        !(area_of[label] < relative * area_of[largest])) {
+    // debris: open, and either a few stray facets (under 4 faces: no volume,
+    // whatever their size) or small in area next to the solid
+    const bool removable = open_debris_only
+                           ? open[label] && (nf < 4 || area_of[label] < relative * area_of[largest])
+                           : double(nf) < relative * double(faces_of[largest]) &&
+                                 area_of[label] < relative * area_of[largest];
+    if (!removable) {
       ++r.components_kept_relative;
       continue;
     }
@@ -203,6 +218,10 @@ Small_components_result remove_small_components_seeded(PM& pm, const VPM& vpm,
 ///     components with fewer faces are removed
 ///   - `relative_component_size` (double in [0, 1], default 0.01): ... and
 ///     fewer faces and less area than this share of the largest component
+///   - `open_debris_only` (bool, default false): remove only open components
+///     next to a closed largest component, when they have fewer than 4 faces
+///     or less than `relative_component_size` of its area (the stray facets
+///     of a print model); the `cad` profile of `clean_scan_mesh()` uses this
 ///   - `vertex_point_map` (default: internal point map), for the areas
 ///   - `visitor` (default `Default_visitor`): phase "remove_small_components";
 ///     `stop_requested()` polled before any change
@@ -219,6 +238,7 @@ Small_components_result remove_small_components(
   const std::size_t threshold =
       internal::get_or(np, internal_np::min_component_faces, std::size_t(400));
   const double relative = internal::get_or(np, internal_np::relative_component_size, 0.01);
+  const bool debris = internal::get_or(np, internal_np::open_debris_only, false);
   auto vpm = CGAL::parameters::choose_parameter(
       CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
       get_property_map(CGAL::vertex_point, pmesh));
@@ -232,7 +252,8 @@ Small_components_result remove_small_components(
     return r;
   }
   r = internal::clean_pipeline::remove_small_components_seeded(
-      pmesh, vpm, faces(pmesh), threshold, relative, internal::clean_pipeline::edit_observer(np));
+      pmesh, vpm, faces(pmesh), threshold, relative, internal::clean_pipeline::edit_observer(np),
+      static_cast<const std::nullptr_t*>(nullptr), debris);
   visitor.progress(1.);
   return r;
 }
