@@ -32,7 +32,7 @@ MREPAIR_ADD_NAMED_PARAMETER(max_boundary_rounds)           // removal rounds (30
 MREPAIR_ADD_NAMED_PARAMETER(boundary_component_faces)      // components removed in the region (40)
 MREPAIR_ADD_NAMED_PARAMETER(boundary_smoothing_iterations) // (10)
 MREPAIR_ADD_NAMED_PARAMETER(boundary_smoothing_step)       // (0.02)
-MREPAIR_ADD_NAMED_PARAMETER(jagged_loop_turning)           // loops turning more than this x 2 pi are jagged (2)
+MREPAIR_ADD_NAMED_PARAMETER(jagged_loop_turning)           // loops whose jaggedness exceeds this x 2 pi are eroded (1)
 MREPAIR_ADD_NAMED_PARAMETER(boundary_erosion_share)        // share of a loop's region faces removable (0.5)
 
 namespace mrepair {
@@ -252,7 +252,7 @@ Boundary_cleaning_result clean_boundaries(
   const std::size_t smooth_it =
       internal::get_or(np, internal_np::boundary_smoothing_iterations, std::size_t(10));
   const double step = internal::get_or(np, internal_np::boundary_smoothing_step, 0.02);
-  const double jag_turning = internal::get_or(np, internal_np::jagged_loop_turning, 2.);
+  const double jag_turning = internal::get_or(np, internal_np::jagged_loop_turning, 1.);
   const double share = internal::get_or(np, internal_np::boundary_erosion_share, 0.5);
 
   auto observer = SC::edit_observer(np);
@@ -289,7 +289,7 @@ Boundary_cleaning_result clean_boundaries(
     if (!is_border(h, pmesh) || get(loop_of, target(h, pmesh)) >= 0) continue;
     const int l = int(jagged.size());
     for (auto g : CGAL::halfedges_around_face(h, pmesh)) put(loop_of, target(g, pmesh), l);
-    jagged.push_back(SC::loop_turning(h, pmesh, vpm) >
+    jagged.push_back(SC::loop_jaggedness(h, pmesh, vpm) >
                      jag_turning * 2. * 3.14159265358979323846);
   }
   r.loops = jagged.size();

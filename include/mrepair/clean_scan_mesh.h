@@ -308,7 +308,7 @@ inline void add_totals(Hole_filling_result& a, const Hole_filling_result& b)
 ///   - `min_component_faces` (std::size_t, default 400), `relative_component_size` (0.01)
 ///   - `max_hole_vertices` (std::size_t, default 100; 500 for the cad profile),
 ///     `max_hole_area_share` (0.4)
-///   - `jagged_loop_turning` (2), `boundary_erosion_share` (0.5): see `clean_boundaries()`
+///   - `jagged_loop_turning` (1), `boundary_erosion_share` (0.5): see `clean_boundaries()`
 ///   - `boundary_dihedral_angle` (double, degrees, default 120)
 ///   - `hole_density_factor` (double, default 1), `fair_hole_patches` (bool, default false)
 ///   - `collect_garbage` (bool, default true)
@@ -356,7 +356,7 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
   std::size_t max_hole = internal::get_or(np, internal_np::max_hole_vertices, std::size_t(100));
   const double hole_share = internal::get_or(np, internal_np::max_hole_area_share, 0.4);
   const double boundary_angle = internal::get_or(np, internal_np::boundary_dihedral_angle, 120.);
-  const double jag_turning = internal::get_or(np, internal_np::jagged_loop_turning, 2.);
+  const double jag_turning = internal::get_or(np, internal_np::jagged_loop_turning, 1.);
   const double erosion_share = internal::get_or(np, internal_np::boundary_erosion_share, 0.5);
   const double density = internal::get_or(np, internal_np::hole_density_factor, 1.);
   const bool fair = internal::get_or(np, internal_np::fair_hole_patches, false);

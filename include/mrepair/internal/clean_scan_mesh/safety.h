@@ -60,17 +60,19 @@ std::size_t label_components(const PM& pm, const VPM& vpm, FaceId& id,
   return faces_of.size();
 }
 
-/// Total absolute turning (radians) of the boundary loop of border halfedge
-/// `h`: the sum over its vertices of the angle between the incoming and the
-/// outgoing edge. A simple convex planar loop turns 2 pi; a straight or
-/// smoothly curved one (a sheet's border, a CAD patch edge) stays near that;
-/// a jagged scan border zigzags at every few vertices and turns many times
-/// more.
+/// Jaggedness (radians) of the boundary loop of border halfedge `h`: the
+/// total absolute turning of the loop minus the absolute value of its total
+/// signed turning, the sign of each turn read against the surface normal at
+/// the vertex. A loop that turns one way, however often it winds (a convex
+/// sheet border, a smoothly curved CAD patch edge, the boundary of a Moebius
+/// strip), has none; each reflex corner adds twice its angle (an L-shaped
+/// plate: pi); a scan border that zigzags at the scale of its triangles adds
+/// at every tooth.
 template <typename PM, typename VPM>
-double loop_turning(typename boost::graph_traits<PM>::halfedge_descriptor h, const PM& pm,
-                    const VPM& vpm)
+double loop_jaggedness(typename boost::graph_traits<PM>::halfedge_descriptor h, const PM& pm,
+                       const VPM& vpm)
 {
-  double total = 0.;
+  double total = 0., signed_total = 0.;
   for (auto g : CGAL::halfedges_around_face(h, pm)) {
     const Vec3 a = point(vpm, source(g, pm)), b = point(vpm, target(g, pm)),
                c = point(vpm, target(next(g, pm), pm));
@@ -79,9 +81,14 @@ double loop_turning(typename boost::graph_traits<PM>::halfedge_descriptor h, con
     if (!(lu > 0.) || !(lw > 0.)) continue;
     double cs = dot(u, w) / (lu * lw);
     cs = std::max(-1., std::min(1., cs));
-    total += std::acos(cs);
+    const double t = std::acos(cs);
+    // the surface normal at b: the faces along the two border edges
+    const Vec3 n = add(face_normal(opposite(g, pm), pm, vpm),
+                       face_normal(opposite(next(g, pm), pm), pm, vpm));
+    total += t;
+    signed_total += dot(cross(u, w), n) >= 0. ? t : -t;
   }
-  return total;
+  return total - std::abs(signed_total);
 }
 
 /// Area of the fan from the centroid of the loop of border halfedge `h` to
