@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 /// \file clean_boundaries.h
@@ -53,7 +54,8 @@ struct Boundary_cleaning_result
   std::size_t component_faces_removed = 0;
   std::size_t vertices_smoothed = 0;
   std::size_t loops = 0;                 ///< boundary loops found at the start
-  std::size_t jagged_loops = 0;          ///< of which jagged: the only ones eroded
+  std::size_t jagged_loops = 0;          ///< of which jagged: eroded along their length
+  std::size_t tooth_vertices = 0;        ///< vertices of local teeth on the other loops: eroded there
   std::size_t loops_at_budget = 0;       ///< loops whose erosion stopped at `boundary_erosion_share`
 
   void to_report(Report& r) const
@@ -71,6 +73,7 @@ struct Boundary_cleaning_result
     r.add("vertices_smoothed", vertices_smoothed);
     r.add("loops", loops);
     r.add("jagged_loops", jagged_loops);
+    r.add("tooth_vertices", tooth_vertices);
     r.add("loops_at_budget", loops_at_budget);
   }
 };
@@ -78,12 +81,14 @@ struct Boundary_cleaning_result
 namespace internal {
 namespace clean_pipeline {
 
-// A boundary vertex is bad (RameshCleaner 3.3) when a) its valence is 2, b) an
-// incident edge has a dihedral angle above `max_angle`, or c) it has more than
-// two incident boundary edges.
+// Why a boundary vertex is bad (RameshCleaner 3.3): a) its valence is 2,
+// b) an incident edge has a dihedral angle above `max_angle` (a border face
+// folded back), c) it has more than two incident boundary edges.
+enum class Bad_boundary { no, valence_two, folded, pinched };
+
 template <typename PM, typename VPM>
-bool is_bad_boundary_vertex(typename boost::graph_traits<PM>::vertex_descriptor v, const PM& pm,
-                            const VPM& vpm, double max_angle)
+Bad_boundary bad_boundary_vertex(typename boost::graph_traits<PM>::vertex_descriptor v,
+                                 const PM& pm, const VPM& vpm, double max_angle)
 {
   std::size_t valence = 0, border_edges = 0;
   bool sharp = false;
@@ -94,8 +99,10 @@ bool is_bad_boundary_vertex(typename boost::graph_traits<PM>::vertex_descriptor 
     else if (!sharp && dihedral_angle_deg(h, pm, vpm) > max_angle)
       sharp = true;
   }
-  if (border_edges == 0) return false;
-  return valence == 2 || sharp || border_edges > 2;
+  if (border_edges == 0) return Bad_boundary::no;
+  if (border_edges > 2) return Bad_boundary::pinched;
+  if (sharp) return Bad_boundary::folded;
+  return valence == 2 ? Bad_boundary::valence_two : Bad_boundary::no;
 }
 
 // Collects each boundary vertex once (order of the halfedge scan).
@@ -199,17 +206,30 @@ std::size_t smooth_boundary_ring(PM& pm, const VPM& vpm, std::size_t iterations,
 /// \code
 /// R <- n-ring of the boundary vertices (the confidence region)
 /// C <- boundary vertices
+/// E <- vertices of jagged loops and of local teeth (the safety policy)
 /// repeat at most max_boundary_rounds times:
-///   B <- bad vertices of C inside R   (valence 2, or an incident dihedral
-///                                      angle > boundary_dihedral_angle, or
-///                                      more than 2 incident boundary edges)
+///   B <- bad vertices of C inside R   (valence 2 and in E, or an incident
+///                                      dihedral angle > boundary_dihedral_angle,
+///                                      or more than 2 incident boundary edges)
 ///   if B is empty: stop
-///   remove the faces of B; where a vertex would be pinched (two fans), also
-///   remove its smaller fans; C <- surviving vertices of removed faces
-/// remove the components with < boundary_component_faces faces that touch a boundary
-/// smooth the boundary 1-ring with the restricted uniform Laplacian
+///   remove the faces of B, within each loop's budget; where a vertex would
+///   be pinched (two fans), also remove its smaller fans;
+///   C <- surviving vertices of removed faces (they join E)
+/// remove the pieces with < boundary_component_faces faces the erosion split off
+/// smooth the boundary 1-ring of E with the restricted uniform Laplacian
 /// \endcode
 /// The mesh stays a valid manifold mesh after every removal.
+///
+/// Safety policy (doc/guarantees.md): a loop is jagged when its total
+/// absolute turning exceeds its net turning by more than
+/// `jagged_loop_turning` x 2 pi (a scan border that zigzags); a tooth is a
+/// window of 5 border vertices whose turning exceeds its net turning by half
+/// that (a dangling ear, a border face folded back). Straight and convex
+/// borders, and the corners of sheets, are neither: they keep their shape.
+/// Each loop loses at most `boundary_erosion_share` of the faces of its
+/// confidence region, and components smaller than 4 x
+/// `boundary_component_faces` are never removed here (the job of
+/// `remove_small_components()`).
 ///
 /// \tparam PolygonMesh model of `MutableFaceGraph` (triangles expected)
 /// \param np optional:
@@ -222,6 +242,8 @@ std::size_t smooth_boundary_ring(PM& pm, const VPM& vpm, std::size_t iterations,
 ///     fewer faces touching a boundary are removed afterwards (0: none)
 ///   - `boundary_smoothing_iterations` (std::size_t, default 10)
 ///   - `boundary_smoothing_step` (double, default 0.02)
+///   - `jagged_loop_turning` (double, default 1): see the safety policy above
+///   - `boundary_erosion_share` (double in [0, 1], default 0.5)
 ///   - `visitor`: phase "clean_boundaries"; `stop_requested()` polled between rounds
 /// \return `Boundary_cleaning_result`: status `ok`, `partial` (round cap hit
 ///   with bad vertices left), `non_finite_input` (a region vertex has a
@@ -268,12 +290,17 @@ Boundary_cleaning_result clean_boundaries(
   }
 
   // Boundary loops: each boundary vertex gets its loop's index (a manifold
-  // vertex lies on one loop at most). Only jagged loops are eroded.
+  // vertex lies on one loop at most). Only the vertices of jagged loops and
+  // of local teeth (an ear, a folded border face, on a loop straight
+  // elsewhere) may be eroded; a vertex the erosion uncovers inherits that
+  // right from the vertex whose faces went.
   auto seen = get(CGAL::dynamic_vertex_property_t<bool>(), pmesh);
   auto loop_of = get(CGAL::dynamic_vertex_property_t<int>(), pmesh);
+  auto erodible = get(CGAL::dynamic_vertex_property_t<bool>(), pmesh);
   for (vertex_descriptor v : vertices(pmesh)) {
     put(seen, v, false);
     put(loop_of, v, -1);
+    put(erodible, v, false);
   }
   std::vector<vertex_descriptor> boundary;
   SC::collect_boundary_vertices(pmesh, seen, boundary);
@@ -285,15 +312,26 @@ Boundary_cleaning_result clean_boundaries(
       return r;
     }
   std::vector<char> jagged;
-  for (auto h : halfedges(pmesh)) {
-    if (!is_border(h, pmesh) || get(loop_of, target(h, pmesh)) >= 0) continue;
-    const int l = int(jagged.size());
-    for (auto g : CGAL::halfedges_around_face(h, pmesh)) put(loop_of, target(g, pmesh), l);
-    jagged.push_back(SC::loop_jaggedness(h, pmesh, vpm) >
-                     jag_turning * 2. * 3.14159265358979323846);
+  {
+    constexpr double two_pi = 2. * 3.14159265358979323846;
+    std::vector<std::pair<vertex_descriptor, double>> turns;
+    for (auto h : halfedges(pmesh)) {
+      if (!is_border(h, pmesh) || get(loop_of, target(h, pmesh)) >= 0) continue;
+      const int l = int(jagged.size());
+      SC::loop_turns(h, pmesh, vpm, turns);
+      for (const auto& t : turns) put(loop_of, t.first, l);
+      const bool whole = SC::jaggedness(turns.begin(), turns.end()) > jag_turning * two_pi;
+      jagged.push_back(whole);
+      if (whole)
+        for (const auto& t : turns) put(erodible, t.first, true);
+      else
+        SC::mark_local_teeth(turns, std::size_t(2), jag_turning * two_pi / 2.,
+                             [&](vertex_descriptor v) { put(erodible, v, true); });
+    }
   }
   r.loops = jagged.size();
   for (char j : jagged) r.jagged_loops += std::size_t(j);
+  for (vertex_descriptor v : boundary) r.tooth_vertices += std::size_t(get(erodible, v) && !jagged[std::size_t(get(loop_of, v))]);
 
   // The confidence region (BFS to depth `rings`), each vertex labelled with
   // the loop that reached it first, and each loop's region faces: a loop
@@ -369,8 +407,12 @@ Boundary_cleaning_result clean_boundaries(
       if (get(seen, v)) continue;  // listed twice
       put(seen, v, true);
       const int l = get(loop_of, v);
-      if (get(region, v) >= 0 && l >= 0 && jagged[std::size_t(l)] &&
-          SC::is_bad_boundary_vertex(v, pmesh, vpm, max_angle))
+      if (get(region, v) < 0 || l < 0) continue;
+      // A valence-2 vertex is also the corner of a clean sheet: it goes only
+      // on a jagged loop or a tooth. A fold or a pinch is a defect anywhere.
+      const SC::Bad_boundary why = SC::bad_boundary_vertex(v, pmesh, vpm, max_angle);
+      if (why == SC::Bad_boundary::folded || why == SC::Bad_boundary::pinched ||
+          (why == SC::Bad_boundary::valence_two && get(erodible, v)))
         bad.push_back(v);
     }
     for (vertex_descriptor v : candidates) put(seen, v, false);
@@ -401,8 +443,9 @@ Boundary_cleaning_result clean_boundaries(
           put(fmark, face(h, pmesh), char(1));
           doomed.push_back(face(h, pmesh));
         }
-        // the vertices this uncovers join the loop
+        // the vertices this uncovers join the loop, and may be eroded in turn
         if (get(loop_of, source(h, pmesh)) < 0) put(loop_of, source(h, pmesh), int(l));
+        put(erodible, source(h, pmesh), true);
       }
     }
     for (face_descriptor f : doomed) put(fmark, f, char(0));
@@ -433,13 +476,10 @@ Boundary_cleaning_result clean_boundaries(
     r.component_faces_removed = c.faces_removed;
   }
 
-  // Only jagged loops are smoothed: clean borders keep their shape.
+  // Only jagged loops and teeth are smoothed: clean borders keep their shape.
   r.vertices_smoothed = SC::smooth_boundary_ring(
       pmesh, vpm, smooth_it, step,
-      [&](vertex_descriptor v) {
-        const int l = get(loop_of, v);
-        return l >= 0 && jagged[std::size_t(l)];
-      },
+      [&](vertex_descriptor v) { return get(erodible, v); },
       observer);
   visitor.progress(1.);
   return r;

@@ -533,10 +533,17 @@ public:
       // is at least ten times larger, so that no small part is eaten.
       {
         std::vector<halfedge_descriptor> kept;
+        std::vector<face_descriptor> ring_faces;
         for (halfedge_descriptor h : failed) {
-          std::size_t ring = 0;
+          ring_faces.clear();
           for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_))
-            ring += degree(target(g, pm_), pm_);
+            for (halfedge_descriptor k : CGAL::halfedges_around_target(g, pm_))
+              if (!is_border(k, pm_) && !get(visited_, face(k, pm_))) {
+                put(visited_, face(k, pm_), char(1));
+                ring_faces.push_back(face(k, pm_));
+              }
+          for (face_descriptor f : ring_faces) put(visited_, f, char(0));
+          const std::size_t ring = ring_faces.size();
           if (component_reaches(face(opposite(h, pm_), pm_), 0., 10 * ring)) kept.push_back(h);
           else result.open_holes.push_back({loop_size(h), "component_too_small"});
         }

@@ -12,8 +12,10 @@
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace mrepair {
@@ -60,35 +62,90 @@ std::size_t label_components(const PM& pm, const VPM& vpm, FaceId& id,
   return faces_of.size();
 }
 
-/// Jaggedness (radians) of the boundary loop of border halfedge `h`: the
-/// total absolute turning of the loop minus the absolute value of its total
-/// signed turning, the sign of each turn read against the surface normal at
-/// the vertex. A loop that turns one way, however often it winds (a convex
-/// sheet border, a smoothly curved CAD patch edge, the boundary of a Moebius
-/// strip), has none; each reflex corner adds twice its angle (an L-shaped
-/// plate: pi); a scan border that zigzags at the scale of its triangles adds
-/// at every tooth.
+/// The signed turning angle (radians) at the target of each border halfedge
+/// of the loop of `h`, in loop order, with that target: the sign of each turn
+/// is read against the surface normal at the vertex (the faces along its two
+/// border edges). A zero-length edge gives no turn.
 template <typename PM, typename VPM>
-double loop_jaggedness(typename boost::graph_traits<PM>::halfedge_descriptor h, const PM& pm,
-                       const VPM& vpm)
+void loop_turns(typename boost::graph_traits<PM>::halfedge_descriptor h, const PM& pm,
+                const VPM& vpm,
+                std::vector<std::pair<typename boost::graph_traits<PM>::vertex_descriptor, double>>&
+                    out)
 {
-  double total = 0., signed_total = 0.;
+  out.clear();
   for (auto g : CGAL::halfedges_around_face(h, pm)) {
     const Vec3 a = point(vpm, source(g, pm)), b = point(vpm, target(g, pm)),
                c = point(vpm, target(next(g, pm), pm));
     const Vec3 u = sub(b, a), w = sub(c, b);
     const double lu = norm(u), lw = norm(w);
-    if (!(lu > 0.) || !(lw > 0.)) continue;
-    double cs = dot(u, w) / (lu * lw);
-    cs = std::max(-1., std::min(1., cs));
-    const double t = std::acos(cs);
-    // the surface normal at b: the faces along the two border edges
-    const Vec3 n = add(face_normal(opposite(g, pm), pm, vpm),
-                       face_normal(opposite(next(g, pm), pm), pm, vpm));
-    total += t;
-    signed_total += dot(cross(u, w), n) >= 0. ? t : -t;
+    double t = 0.;
+    if (lu > 0. && lw > 0.) {
+      const double cs = std::max(-1., std::min(1., dot(u, w) / (lu * lw)));
+      t = std::acos(cs);
+      const Vec3 n = add(face_normal(opposite(g, pm), pm, vpm),
+                         face_normal(opposite(next(g, pm), pm), pm, vpm));
+      if (dot(cross(u, w), n) < 0.) t = -t;
+    }
+    out.emplace_back(target(g, pm), t);
+  }
+}
+
+/// Jaggedness of a run of signed turns: their total absolute turning minus
+/// the absolute value of their sum. A run that turns one way has none; a
+/// turn and its undoing (a tooth, an ear) add twice their angle.
+template <typename Iterator>
+double jaggedness(Iterator first, Iterator last)
+{
+  double total = 0., signed_total = 0.;
+  for (; first != last; ++first) {
+    total += std::abs(first->second);
+    signed_total += first->second;
   }
   return total - std::abs(signed_total);
+}
+
+/// Jaggedness (radians) of the boundary loop of border halfedge `h`. A loop
+/// that turns one way, however often it winds (a convex sheet border, a
+/// smoothly curved CAD patch edge, the boundary of a Moebius strip), has
+/// none; each reflex corner adds twice its angle (an L-shaped plate: pi); a
+/// scan border that zigzags at the scale of its triangles adds at every tooth.
+template <typename PM, typename VPM>
+double loop_jaggedness(typename boost::graph_traits<PM>::halfedge_descriptor h, const PM& pm,
+                       const VPM& vpm)
+{
+  std::vector<std::pair<typename boost::graph_traits<PM>::vertex_descriptor, double>> turns;
+  loop_turns(h, pm, vpm, turns);
+  return jaggedness(turns.begin(), turns.end());
+}
+
+/// Calls `mark(v)` for the vertices of `turns` (one loop, in order) at the
+/// centre of a window of 2 * `half_width` + 1 turns whose jaggedness exceeds
+/// `threshold`: a local tooth (a dangling ear, a border face folded back)
+/// on a loop that is straight elsewhere. A corner, however sharp, has
+/// no jaggedness of its own.
+template <typename Turns, typename Mark>
+void mark_local_teeth(const Turns& turns, std::size_t half_width, double threshold,
+                      const Mark& mark)
+{
+  const std::size_t n = turns.size();
+  if (n == 0) return;
+  if (n <= 2 * half_width + 1) {
+    if (jaggedness(turns.begin(), turns.end()) > threshold)
+      for (const auto& t : turns) mark(t.first);
+    return;
+  }
+  // sliding window over the cyclic sequence
+  double total = 0., signed_total = 0.;
+  auto add_turn = [&](std::size_t i, double s) {
+    total += s * std::abs(turns[i % n].second);
+    signed_total += s * turns[i % n].second;
+  };
+  for (std::size_t i = 0; i <= 2 * half_width; ++i) add_turn(n - half_width + i, 1.);
+  for (std::size_t c = 0; c < n; ++c) {
+    if (total - std::abs(signed_total) > threshold) mark(turns[c].first);
+    add_turn(n - half_width + c, -1.);
+    add_turn(c + half_width + 1, 1.);
+  }
 }
 
 /// Area of the fan from the centroid of the loop of border halfedge `h` to
