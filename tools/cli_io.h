@@ -15,9 +15,7 @@
 #include <mrepair/io.h>
 #include <mrepair/report.h>
 #include <mrepair/status.h>
-
-#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
-#include <CGAL/boost/graph/helpers.h>
+#include <mrepair/triangulate_polygons.h>
 
 #include <chrono>
 #include <string>
@@ -104,23 +102,11 @@ bool save_mesh(const std::string& path, const PolygonMesh& mesh, bool binary, Re
 template <class PolygonMesh>
 bool triangulate_polygons(PolygonMesh& mesh, Report& report, std::string& error)
 {
-  std::size_t polygons = 0;
-  for (auto f : faces(mesh))
-    if (CGAL::halfedges_around_face(halfedge(f, mesh), mesh).size() != 3) ++polygons;
-  if (polygons == 0) return true;
-  const std::size_t before = static_cast<std::size_t>(faces(mesh).size());
-  const bool ok = CGAL::Polygon_mesh_processing::triangulate_faces(mesh);
-  Report& s = report.section("triangulation");
-  s.add("polygons", polygons);
-  s.add("faces_before", before);
-  s.add("faces_after", static_cast<std::size_t>(faces(mesh).size()));
-  s.add("complete", ok);
-  if (!ok || !CGAL::is_triangle_mesh(mesh)) {
-    error = "some of the " + std::to_string(polygons) + " polygons with more than three sides "
-            "could not be triangulated";
-    return false;
-  }
-  return true;
+  const Triangulation_result t = mrepair::triangulate_polygons(mesh);
+  if (t.polygons > 0) t.to_report(report.section("triangulation"));
+  if (t.status == Status::ok) return true;
+  error = t.message;
+  return false;
 }
 
 /// writes a polygon soup like `save_mesh`.

@@ -1,22 +1,16 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
-// `mrepair repair INPUT OUTPUT`: the whole job for a mesh file: soup to
-// manifold mesh (when the input is not one), gap closing (when asked), then
-// the cleaning pipeline with the steps of the input's profile (a scan gets
-// RameshCleaner, a CAD export or print model keeps its geometry and parts
-// and gets its holes closed), then the validity check; inspection before and
-// after, and a face accounting that reconciles.
+// `mrepair repair INPUT OUTPUT`: the whole job for a mesh file: read, run
+// `mrepair::repair_polygon_soup` (repair.h: soup to manifold mesh, gap
+// closing, cleaning by input profile, validity, inspections, face
+// accounting), print as it goes, write.
 #include "cli.h"
-#include "cli_io.h"
 
-#include <mrepair/clean_scan_mesh.h>
 #include <mrepair/input_profile.h>
-#include <mrepair/close_gaps.h>
-#include <mrepair/inspect.h>
+#include <mrepair/inspection_report.h>
 #include <mrepair/io.h>
-#include <mrepair/stitch_soup.h>
+#include <mrepair/repair.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <cmath>
@@ -26,7 +20,6 @@ namespace {
 
 using K = CGAL::Epick;
 using Mesh = CGAL::Surface_mesh<K::Point_3>;
-namespace MP = mrepair::parameters;
 namespace cli = mrepair::cli;
 
 const std::vector<cli::Option>& repair_options()
@@ -95,125 +88,35 @@ int run_repair(int argc, char** argv)
     return cli::fail(in.message.empty() ? a.positional[0] + ": cannot read" : in.message);
   in.to_report(report.section("input"));
 
-  const double inspect_spike = std::isnan(spike) ? 100. : spike;  // inspect's default is 100
-  auto thresholds = MP::max_hole_vertices(
-      hole_n, MP::min_component_faces(comp_n, MP::spike_angle(inspect_spike)));
-  mrepair::Inspection_report before = mrepair::inspect_polygon_soup(points, polygons, thresholds);
-  before.to_report(report.section("before"));
-  print_inspection("before", before, quiet);
-
-  // Face accounting over the whole job, in triangles: each stage adds what
-  // it removed and added, by reason.
-  std::size_t faces_in = 0;
-  std::vector<std::pair<std::string, std::size_t>> removed, added;
-  for (const auto& poly : polygons) faces_in += poly.size() >= 3 ? poly.size() - 2 : 1;
-
-  // 1. A manifold mesh, built directly when the soup already is one.
-  Mesh mesh;
-  const bool direct = in.status == mrepair::Status::ok &&
-                      mrepair::is_polygon_soup_a_polygon_mesh(polygons, points.size());
-  if (direct) {
-    CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, mesh);
-    report.section("soup_to_manifold").add("needed", false);
-  } else {
-    mrepair::Soup_repair_result s;
-    {
-      mrepair::internal::Phase_scope<cli::Progress_printer> phase(printer, "soup_to_manifold");
-      s = mrepair::polygon_soup_to_manifold_mesh(points, polygons, mesh,
-                                                 MP::merge_epsilon(merge));
-    }
-    mrepair::Report& sr = report.section("soup_to_manifold");
-    sr.add("needed", true);
-    s.to_report(sr);
-    removed.emplace_back("soup_invalid_index", s.removed_invalid_index);
-    removed.emplace_back("soup_non_finite", s.removed_non_finite);
-    removed.emplace_back("soup_degenerate", s.removed_degenerate_index + s.removed_collinear);
-    removed.emplace_back("soup_duplicate", s.removed_duplicate);
-    faces_in = s.faces_in;  // the soup stage's count (triangles of distinct corners) rules
-    if (!mrepair::succeeded(s.status)) {
-      cli::emit_report(a, report);
-      return cli::fail("soup_to_manifold: " + std::string(mrepair::to_string(s.status)) +
-                       (s.message.empty() ? "" : ": " + s.message));
-    }
-  }
-  points.clear();
-  polygons.clear();
-  {
-    std::string error;
-    if (!cli::triangulate_polygons(mesh, report, error)) {
-      cli::emit_report(a, report);
-      return cli::fail(a.positional[0] + ": " + error);
-    }
-  }
-
-  // 2. Gap closing, when asked.
-  if (gap > 0.) {
-    mrepair::Gap_closing_result g;
-    const std::size_t f0 = static_cast<std::size_t>(faces(mesh).size());
-    {
-      mrepair::internal::Phase_scope<cli::Progress_printer> phase(printer, "close_gaps");
-      g = mrepair::close_gaps(mesh, gap);
-    }
-    const std::size_t f1 = static_cast<std::size_t>(faces(mesh).size());
-    // vertex-edge contractions split the faces they land on
-    if (f1 > f0) added.emplace_back("close_gaps_splits", f1 - f0);
-    if (f0 > f1) removed.emplace_back("close_gaps", f0 - f1);
-    g.to_report(report.section("close_gaps"));
-    if (!mrepair::succeeded(g.status)) {
-      cli::emit_report(a, report);
-      return cli::fail("close_gaps: " + std::string(mrepair::to_string(g.status)));
-    }
-  }
-
-  // 3. The cleaning pipeline, with the steps of the input's profile.
-  auto clean = [&](const auto& np) {
-    return mrepair::clean_scan_mesh(
-        mesh, MP::min_component_faces(
-                  comp_n, MP::max_clean_iterations(
-                              static_cast<std::size_t>(iterations),
-                              MP::spike_angle(spike, MP::input_profile(profile, np))))
-                  .visitor(std::ref(printer)));
+  mrepair::Repair_options options;
+  options.profile = profile;
+  options.gap_tolerance = gap;
+  options.merge_epsilon = merge;
+  options.spike_angle = spike;
+  if (a.has("max-hole")) options.max_hole_vertices = hole_n;  // else the profile picks the limit
+  options.min_component_faces = comp_n;
+  options.max_clean_iterations = static_cast<std::size_t>(iterations);
+  options.count_self_intersections = count_si;
+  options.after_stage = [&](const char* stage, const mrepair::Repair_result& r) {
+    if (quiet) return;
+    const std::string s = stage;
+    if (s == "before") print_inspection("before", r.before, quiet);
+    if (s == "clean")
+      std::cerr << "profile: " << mrepair::to_string(r.clean.profile.profile)
+                << (r.clean.profile.chosen_by_user ? " (chosen)" : "") << ": "
+                << r.clean.profile.reason << "\n";
+    if (s == "after") print_inspection("after", r.after, quiet);
   };
-  // without --max-hole the profile picks the limit
-  mrepair::Scan_cleaning_result c = a.has("max-hole")
-                                        ? clean(MP::max_hole_vertices(hole_n))
-                                        : clean(CGAL::parameters::default_values());
-  c.to_report(report.section("clean"));
-  if (!quiet)
-    std::cerr << "profile: " << mrepair::to_string(c.profile.profile)
-              << (c.profile.chosen_by_user ? " (chosen)" : "") << ": " << c.profile.reason << "\n";
-  if (!mrepair::succeeded(c.status) && c.status != mrepair::Status::empty_input) {
+  Mesh mesh;
+  const mrepair::Repair_result r = mrepair::repair_polygon_soup(
+      points, polygons, mesh, options, CGAL::parameters::visitor(std::ref(printer)));
+  r.to_report(report);
+  if (!r.failed_stage.empty()) {
     cli::emit_report(a, report);
-    return cli::fail("clean: " + std::string(mrepair::to_string(c.status)) +
-                     (c.message.empty() ? "" : ": " + c.message));
+    // a triangulation failure names the file, the others their stage
+    return cli::fail(r.failed_stage == "triangulation" ? a.positional[0] + ": " + r.message
+                                                       : r.message);
   }
-  for (std::size_t i = 0; i < mrepair::number_of_clean_steps; ++i) {
-    if (c.steps[i].faces_removed) removed.emplace_back(mrepair::clean_step_name(i), c.steps[i].faces_removed);
-    if (c.steps[i].faces_added) added.emplace_back(mrepair::clean_step_name(i), c.steps[i].faces_added);
-  }
-  {
-    const std::size_t faces_out = static_cast<std::size_t>(faces(mesh).size());
-    std::size_t rm = 0, ad = 0;
-    mrepair::Report& fa = report.section("face_accounting");
-    fa.add("faces_in", faces_in);
-    fa.add("faces_out", faces_out);
-    mrepair::Report& rs = fa.section("removed");
-    for (const auto& x : removed)
-      if (x.second) { rs.add(x.first, x.second); rm += x.second; }
-    mrepair::Report& as = fa.section("added");
-    for (const auto& x : added)
-      if (x.second) { as.add(x.first, x.second); ad += x.second; }
-    fa.add("reconciles", faces_in + ad == faces_out + rm);
-  }
-
-  mrepair::Inspection_report after =
-      mrepair::inspect(mesh, MP::max_hole_vertices(
-                                 hole_n, MP::min_component_faces(
-                                             comp_n, MP::spike_angle(
-                                                         inspect_spike,
-                                                         MP::count_self_intersections(count_si)))));
-  after.to_report(report.section("after"));
-  print_inspection("after", after, quiet);
 
   mrepair::Io_result out;
   t = cli::timed([&] { out = mrepair::write_polygon_mesh(a.positional[1], mesh, a.has("binary")); });
@@ -222,7 +125,7 @@ int run_repair(int argc, char** argv)
   if (!cli::emit_report(a, report)) return 1;
   if (out.status != mrepair::Status::ok)
     return cli::fail(out.message.empty() ? a.positional[1] + ": cannot write" : out.message);
-  return cli::exit_code(c.status);
+  return cli::exit_code(r.status);
 }
 
 cli::Registrar reg{{"repair",

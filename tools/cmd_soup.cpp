@@ -39,23 +39,6 @@ const cli::Command command{"soup", "INPUT OUTPUT [--epsilon E] [--merge-epsilon 
                            "polygon soup to oriented manifold triangle mesh (cutting and stitching)", run};
 cli::Registrar reg{command};
 
-// the figures that say whether the soup is a clean mesh
-void summary(const mrepair::Inspection_report& i, mrepair::Report& r)
-{
-  r.add("vertices", i.vertices);
-  r.add("faces", i.faces);
-  r.add("invalid_polygons", i.invalid_polygons);
-  r.add("non_finite_vertices", i.non_finite_vertices);
-  r.add("duplicate_points", i.duplicate_points);
-  r.add("degenerate_faces", i.degenerate_faces);
-  r.add("duplicate_faces", i.duplicate_faces);
-  r.add("non_manifold_edges", i.non_manifold_edges);
-  r.add("non_manifold_vertices", i.non_manifold_vertices);
-  r.add("inconsistent_orientation_edges", i.inconsistent_orientation_edges);
-  r.add("boundary_edges", i.boundary_edges);
-  r.add("connected_components", i.connected_components);
-}
-
 int run(int argc, char** argv)
 {
   cli::Arguments args = cli::parse(argc, argv, 1, options, 2, 2);
@@ -83,8 +66,8 @@ int run(int argc, char** argv)
 
   mrepair::Report report;
   io.to_report(report.section("file"));
-  summary(mrepair::inspect_polygon_soup(points, polygons, MP::count_self_intersections(false)),
-          report.section("before"));
+  mrepair::inspect_polygon_soup(points, polygons, MP::count_self_intersections(false))
+      .to_summary_report(report.section("before"));
 
   Mesh mesh;
   mrepair::Soup_repair_result r = mrepair::polygon_soup_to_manifold_mesh(
@@ -97,7 +80,8 @@ int run(int argc, char** argv)
     cli::emit_report(args, report);
     return cli::fail(input + ": " + mrepair::to_string(r.status) + (r.message.empty() ? "" : " (" + r.message + ")"));
   }
-  summary(mrepair::inspect(mesh, MP::count_self_intersections(false)), report.section("after"));
+  mrepair::inspect(mesh, MP::count_self_intersections(false))
+      .to_summary_report(report.section("after"));
 
   printer.start_phase("write");
   mrepair::Io_result wr = mrepair::write_polygon_mesh(output, mesh, args.has("binary"));

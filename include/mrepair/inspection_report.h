@@ -95,6 +95,24 @@ struct Inspection_report
            t_junctions == 0;
   }
 
+  /// writes the figures that say whether a soup is a clean mesh (the
+  /// `before` and `after` sections of `mrepair soup`), flat.
+  void to_summary_report(Report& r) const
+  {
+    r.add("vertices", vertices);
+    r.add("faces", faces);
+    r.add("invalid_polygons", invalid_polygons);
+    r.add("non_finite_vertices", non_finite_vertices);
+    r.add("duplicate_points", duplicate_points);
+    r.add("degenerate_faces", degenerate_faces);
+    r.add("duplicate_faces", duplicate_faces);
+    r.add("non_manifold_edges", non_manifold_edges);
+    r.add("non_manifold_vertices", non_manifold_vertices);
+    r.add("inconsistent_orientation_edges", inconsistent_orientation_edges);
+    r.add("boundary_edges", boundary_edges);
+    r.add("connected_components", connected_components);
+  }
+
   /// writes sections `input`, `defects`, `quality`, `thresholds`.
   void to_report(Report& r) const
   {

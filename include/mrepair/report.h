@@ -132,6 +132,21 @@ public:
     return std::string();
   }
 
+  /// adds every entry of `other` after the entries of this report (an entry of
+  /// the same key is replaced in its place), so that a result can hand over
+  /// the sections it built.
+  Report& append(const Report& other)
+  {
+    if (&other == this) return *this;
+    for (const Entry& e : other.entries_) {
+      Entry& mine = slot(e.key);
+      mine.text = e.text;
+      mine.quoted = e.quoted;
+      mine.child = e.child ? std::make_unique<Report>(*e.child) : nullptr;
+    }
+    return *this;
+  }
+
   bool empty() const { return entries_.empty(); }
 
   /// returns every leaf as (dotted key, value text), in order.

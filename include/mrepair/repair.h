@@ -1,0 +1,284 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_REPAIR_H
+#define MREPAIR_REPAIR_H
+
+/// \file repair.h
+/// The whole repair job on a polygon soup, as `mrepair repair` and the Python
+/// `mrepair.repair` run it: soup to manifold mesh (when the input is not one),
+/// gap closing (when asked), the cleaning pipeline with the steps of the
+/// input's profile (a scan gets RameshCleaner, a CAD export or print model
+/// keeps its geometry and parts and gets its holes closed), then the validity
+/// check; inspection before and after, and a face accounting that reconciles.
+
+#include <mrepair/clean_scan_mesh.h>
+#include <mrepair/close_gaps.h>
+#include <mrepair/input_profile.h>
+#include <mrepair/inspect.h>
+#include <mrepair/io.h>
+#include <mrepair/parameters.h>
+#include <mrepair/report.h>
+#include <mrepair/status.h>
+#include <mrepair/stitch_soup.h>
+#include <mrepair/triangulate_polygons.h>
+#include <mrepair/visitors.h>
+
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mrepair {
+
+struct Repair_result;
+
+/// \ingroup mrepair_clean
+/// the options of `repair_polygon_soup()`, with the defaults of `mrepair repair`.
+struct Repair_options
+{
+  Input_profile profile = Input_profile::automatic;  ///< which cleaning steps apply
+  double gap_tolerance = 0.;           ///< close boundary gaps narrower than this (model units; 0: off)
+  double merge_epsilon = 0.;           ///< merge soup points closer than this before stitching
+  /// dihedral angle (degrees) of a spiked vertex; NaN: the default of
+  /// `relax_spikes()` for cleaning and 100 for the inspections
+  double spike_angle = std::numeric_limits<double>::quiet_NaN();
+  /// holes with fewer boundary vertices are filled; 0: the profile decides
+  /// (100 scan, 500 cad) and the inspections count against 100
+  std::size_t max_hole_vertices = 0;
+  std::size_t min_component_faces = 400;   ///< components with fewer faces are removed
+  std::size_t max_clean_iterations = 5;    ///< cleaning iteration cap
+  bool count_self_intersections = true;    ///< in the inspection after the repair
+  /// called after the stages "before" (input inspected), "clean" (profile
+  /// chosen) and "after" (output inspected), with the result so far: lets a
+  /// caller print while the job runs
+  std::function<void(const char* stage, const Repair_result& so_far)> after_stage;
+};
+
+/// \ingroup mrepair_clean
+/// what `repair_polygon_soup()` did.
+struct Repair_result
+{
+  /// `ok` or `partial` (the cleaning's status); `empty_input` when cleaning
+  /// found nothing to clean; on failure the status of the stage that failed
+  /// (`invalid_parameter` for bad options, `cancelled`).
+  Status status = Status::ok;
+  std::string failed_stage;   ///< "options", "soup_to_manifold", "triangulation", "close_gaps", "clean"; empty when none failed
+  std::string message;        ///< one line: `stage: status[: reason]` on failure
+  bool soup_needed = false;   ///< the input was not a manifold, consistently oriented mesh
+  Inspection_report before;   ///< the input soup
+  Inspection_report after;    ///< the output mesh (filled when the job ran to its end)
+  Scan_cleaning_result clean; ///< the cleaning pipeline (its `profile` says which ran and why)
+  std::size_t faces_in = 0, faces_out = 0;  ///< in triangles
+  std::vector<std::pair<std::string, std::size_t>> faces_removed, faces_added;  ///< by reason
+  Report sections;            ///< the report sections of the stages reached, in order
+
+  /// true when faces in + added = faces out + removed.
+  bool faces_reconcile() const
+  {
+    std::size_t rm = 0, ad = 0;
+    for (const auto& x : faces_removed) rm += x.second;
+    for (const auto& x : faces_added) ad += x.second;
+    return faces_in + ad == faces_out + rm;
+  }
+
+  /// writes the sections of the stages reached: `before`, `soup_to_manifold`,
+  /// `triangulation` (when polygons were triangulated), `close_gaps` (when asked),
+  /// `clean`, `face_accounting`, `after` (the keys of `mrepair repair --json`
+  /// without the file sections `input` and `output`).
+  void to_report(Report& r) const { r.append(sections); }
+};
+
+/// \ingroup mrepair_clean
+/// repairs a polygon soup into a valid manifold triangle mesh `out`, keeping
+/// the user's model (the safety policy of `clean_scan_mesh()`).
+///
+/// \code
+/// before <- inspect_polygon_soup(points, polygons)
+/// if every point is finite and the soup is a manifold, consistently oriented mesh:
+///   build it directly
+/// else:
+///   polygon_soup_to_manifold_mesh (merge_epsilon)         -- stops on failure
+/// points, polygons <- cleared (the mesh holds the data)
+/// triangulate polygons with more than three sides          -- stops on failure
+/// close_gaps(gap_tolerance) when gap_tolerance > 0          -- stops on failure
+/// clean_scan_mesh with the input's profile                  -- stops on failure
+/// face accounting over every stage; after <- inspect(out)
+/// \endcode
+/// The visitor is polled between the stages; the soup stage and the gap
+/// closing get its progress and stop requests (their own phases are dropped),
+/// the cleaning pipeline gets it whole.
+///
+/// \tparam PolygonMesh model of `MutableFaceGraph` (`CGAL::Surface_mesh`, ...)
+/// \param points, polygons the soup; cleared once the mesh is built, to keep
+///   the peak memory down. Non-finite points and polygons with out-of-range
+///   indices are repaired away (counted in the report).
+/// \param out the output mesh, cleared first
+/// \param options see `Repair_options`
+/// \param np optional: `visitor` (`Default_visitor`): phases "soup_to_manifold",
+///   "close_gaps" and those of `clean_scan_mesh()`
+/// \return `Repair_result`; `out` is a valid mesh whatever the status
+template <typename Point, typename Polygon, typename PolygonMesh,
+          typename NamedParameters = CGAL::parameters::Default_named_parameters>
+Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygon>& polygons,
+                                  PolygonMesh& out, const Repair_options& options,
+                                  const NamedParameters& np = CGAL::parameters::default_values())
+{
+  namespace MP = mrepair::parameters;
+  using Handle = internal::Visitor_handle<NamedParameters>;
+  Handle visitor(np);
+  // the soup stage and the gap closing report progress and poll stop, but
+  // their inner phases are not the job's
+  internal::clean_pipeline::Forwarding_visitor<Handle> forward(&visitor);
+  Repair_result result;
+  Report& report = result.sections;
+  CGAL::clear(out);
+
+  auto fail = [&](const std::string& stage, Status s, const std::string& reason) {
+    result.status = s;
+    result.failed_stage = stage;
+    result.message = stage + ": " + to_string(s) + (reason.empty() ? "" : ": " + reason);
+    return result;
+  };
+  auto stop_requested = [&] { return visitor.stop_requested(); };
+  auto stage_done = [&](const char* stage) {
+    if (options.after_stage) options.after_stage(stage, result);
+  };
+
+  const double gap = options.gap_tolerance, merge = options.merge_epsilon,
+               spike = options.spike_angle;
+  // the other options are checked by the stages that use them
+  if (!(gap >= 0.) || !std::isfinite(gap) || !(merge >= 0.) || !std::isfinite(merge) ||
+      options.min_component_faces < 1)
+    return fail("options", Status::invalid_parameter,
+                "gap_tolerance and merge_epsilon must be finite and >= 0, min_component_faces >= 1");
+  const bool hole_given = options.max_hole_vertices > 0;
+  const std::size_t hole_n = hole_given ? options.max_hole_vertices : 100,
+                    comp_n = options.min_component_faces;
+
+  const double inspect_spike = std::isnan(spike) ? 100. : spike;  // inspect's default is 100
+  auto thresholds = MP::max_hole_vertices(
+      hole_n, MP::min_component_faces(comp_n, MP::spike_angle(inspect_spike)));
+  result.before = inspect_polygon_soup(points, polygons, thresholds);
+  result.before.to_report(report.section("before"));
+  stage_done("before");
+  if (stop_requested()) return fail("before", Status::cancelled, "");
+
+  // Face accounting over the whole job, in triangles: each stage adds what
+  // it removed and added, by reason.
+  auto& removed = result.faces_removed;
+  auto& added = result.faces_added;
+  std::size_t faces_in = 0;
+  for (const auto& poly : polygons) faces_in += poly.size() >= 3 ? poly.size() - 2 : 1;
+
+  // 1. A manifold mesh, built directly when the soup already is one.
+  bool finite = true;
+  for (const Point& p : points)
+    finite = finite && std::isfinite(CGAL::to_double(p.x())) &&
+             std::isfinite(CGAL::to_double(p.y())) && std::isfinite(CGAL::to_double(p.z()));
+  const bool direct = finite && is_polygon_soup_a_polygon_mesh(polygons, points.size());
+  result.soup_needed = !direct;
+  if (direct) {
+    CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, out);
+    report.section("soup_to_manifold").add("needed", false);
+  } else {
+    Soup_repair_result s;
+    {
+      internal::Phase_scope<Handle> phase(visitor, "soup_to_manifold");
+      s = polygon_soup_to_manifold_mesh(points, polygons, out,
+                                        MP::merge_epsilon(merge).visitor(std::ref(forward)));
+    }
+    Report& sr = report.section("soup_to_manifold");
+    sr.add("needed", true);
+    s.to_report(sr);
+    removed.emplace_back("soup_invalid_index", s.removed_invalid_index);
+    removed.emplace_back("soup_non_finite", s.removed_non_finite);
+    removed.emplace_back("soup_degenerate", s.removed_degenerate_index + s.removed_collinear);
+    removed.emplace_back("soup_duplicate", s.removed_duplicate);
+    faces_in = s.faces_in;  // the soup stage's count (triangles of distinct corners) rules
+    if (!succeeded(s.status)) return fail("soup_to_manifold", s.status, s.message);
+  }
+  points.clear();
+  polygons.clear();
+  {
+    const Triangulation_result t = triangulate_polygons(out);
+    if (t.polygons > 0) t.to_report(report.section("triangulation"));
+    if (t.status != Status::ok) {
+      result.status = t.status;
+      result.failed_stage = "triangulation";
+      result.message = t.message;
+      return result;
+    }
+  }
+  if (stop_requested()) return fail("soup_to_manifold", Status::cancelled, "");
+
+  // 2. Gap closing, when asked.
+  if (gap > 0.) {
+    Gap_closing_result g;
+    const std::size_t f0 = static_cast<std::size_t>(faces(out).size());
+    {
+      internal::Phase_scope<Handle> phase(visitor, "close_gaps");
+      g = close_gaps(out, gap, CGAL::parameters::visitor(std::ref(forward)));
+    }
+    const std::size_t f1 = static_cast<std::size_t>(faces(out).size());
+    // vertex-edge contractions split the faces they land on
+    if (f1 > f0) added.emplace_back("close_gaps_splits", f1 - f0);
+    if (f0 > f1) removed.emplace_back("close_gaps", f0 - f1);
+    g.to_report(report.section("close_gaps"));
+    if (!succeeded(g.status)) return fail("close_gaps", g.status, "");
+  }
+
+  // 3. The cleaning pipeline, with the steps of the input's profile.
+  auto clean = [&](const auto& np_hole) {
+    return clean_scan_mesh(
+        out, MP::min_component_faces(
+                 comp_n, MP::max_clean_iterations(
+                             options.max_clean_iterations,
+                             MP::spike_angle(spike, MP::input_profile(options.profile, np_hole))))
+                 .visitor(std::ref(visitor.get())));
+  };
+  // without a hole limit the profile picks it
+  result.clean = hole_given ? clean(MP::max_hole_vertices(hole_n))
+                            : clean(CGAL::parameters::default_values());
+  const Scan_cleaning_result& c = result.clean;
+  c.to_report(report.section("clean"));
+  stage_done("clean");
+  if (!succeeded(c.status) && c.status != Status::empty_input)
+    return fail("clean", c.status, c.message);
+  for (std::size_t i = 0; i < number_of_clean_steps; ++i) {
+    if (c.steps[i].faces_removed) removed.emplace_back(clean_step_name(i), c.steps[i].faces_removed);
+    if (c.steps[i].faces_added) added.emplace_back(clean_step_name(i), c.steps[i].faces_added);
+  }
+  result.faces_in = faces_in;
+  result.faces_out = static_cast<std::size_t>(faces(out).size());
+  {
+    Report& fa = report.section("face_accounting");
+    fa.add("faces_in", result.faces_in);
+    fa.add("faces_out", result.faces_out);
+    Report& rs = fa.section("removed");
+    for (const auto& x : removed)
+      if (x.second) rs.add(x.first, x.second);
+    Report& as = fa.section("added");
+    for (const auto& x : added)
+      if (x.second) as.add(x.first, x.second);
+    fa.add("reconciles", result.faces_reconcile());
+  }
+
+  result.after = inspect(
+      out, MP::max_hole_vertices(
+               hole_n, MP::min_component_faces(
+                           comp_n, MP::spike_angle(inspect_spike, MP::count_self_intersections(
+                                                                      options.count_self_intersections)))));
+  result.after.to_report(report.section("after"));
+  stage_done("after");
+  result.status = c.status;
+  return result;
+}
+
+} // namespace mrepair
+
+#endif // MREPAIR_REPAIR_H
