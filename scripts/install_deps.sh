@@ -2,7 +2,11 @@
 # Installs what mrepair needs on Debian 12 (skips apt entirely when all is there).
 set -euo pipefail
 packages=(cmake g++ make libcgal-dev libeigen3-dev libtbb-dev libboost-dev
-          libgtest-dev libgmock-dev libbenchmark-dev libcgal-demo)
+          libgtest-dev libgmock-dev libbenchmark-dev libcgal-demo
+          # the Python package (pybind11) and its tests; venv, setuptools and
+          # wheel for `pip install --no-build-isolation .`
+          pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest
+          python3-venv python3-setuptools python3-wheel)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

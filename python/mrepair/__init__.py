@@ -1,0 +1,65 @@
+# Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+"""mrepair: mesh repair and remeshing on CGAL, from NumPy arrays.
+
+Every call takes vertices V (a float64 N x 3 array) and faces F (an integer
+M x 3 array, or a list of index lists for polygons), copies them (the
+caller's arrays are never changed) and returns new arrays and the report of
+the matching ``mrepair`` command as a dict::
+
+    import mrepair
+    V, F = mrepair.read("part.stl")
+    V, F, report = mrepair.repair(V, F)
+    print(report["face_accounting"], report["after"]["defects"])
+
+The computation runs without the GIL. ``progress`` takes a callable
+``progress(phase, fraction)`` (see ``progress_bar`` for tqdm); returning
+False cancels the call (``Cancelled``, a KeyboardInterrupt), and so does
+Ctrl-C (KeyboardInterrupt). Bad input raises ValueError with the library's
+reason.
+"""
+
+from ._mrepair import (  # noqa: F401
+    Cancelled,
+    GapClosingSequence,
+    clean,
+    close_gaps,
+    inspect,
+    read,
+    remesh,
+    repair,
+    soup_to_manifold,
+    write,
+)
+
+__all__ = [
+    "Cancelled",
+    "GapClosingSequence",
+    "clean",
+    "close_gaps",
+    "inspect",
+    "progress_bar",
+    "read",
+    "remesh",
+    "repair",
+    "soup_to_manifold",
+    "write",
+]
+__version__ = "0.1.0"
+
+
+def progress_bar(bar):
+    """returns a ``progress`` callable that drives a tqdm bar (or anything with
+    ``total``, ``n``, ``set_description`` and ``refresh``): the description is
+    the running phase, the bar its fraction done::
+
+        with tqdm(total=100) as bar:
+            V, F, report = mrepair.repair(V, F, progress=mrepair.progress_bar(bar))
+    """
+    total = bar.total or 100
+
+    def progress(phase, fraction):
+        bar.set_description(phase, refresh=False)
+        bar.n = round(max(0.0, min(1.0, fraction)) * total)
+        bar.refresh()
+
+    return progress

@@ -1,0 +1,152 @@
+# Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+"""Type hints of the package mrepair (the calls are in the compiled module _mrepair)."""
+
+from os import PathLike
+from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+Vertices = npt.ArrayLike
+"""an N x 3 array of real coordinates (float64; other real dtypes are converted)"""
+Faces = Union[npt.ArrayLike, Sequence[Sequence[int]]]
+"""an integer M x 3 (or M x k) array, or a list of index lists (polygons)"""
+FacesOut = Union[npt.NDArray[np.int64], List[List[int]]]
+"""an int64 M x 3 array; a list of index lists when some face is not a triangle"""
+Report = Dict[str, Any]
+"""the report of the matching `mrepair` command (its JSON as a dict)"""
+Progress = Optional[Callable[[str, float], Optional[bool]]]
+"""None, or progress(phase, fraction in [0, 1]); returning False cancels"""
+Result = Tuple[npt.NDArray[np.float64], FacesOut, Report]
+
+__version__: str
+
+class Cancelled(KeyboardInterrupt):
+    """raised when a progress callable returns False."""
+
+def read(path: Union[str, PathLike[str]]) -> Tuple[npt.NDArray[np.float64], FacesOut]:
+    """reads an OFF, OBJ, PLY or STL file as a polygon soup (V, F).
+
+    Raises OSError when the file cannot be read, ValueError when it is
+    malformed, empty, of an unknown kind or has out-of-range indices."""
+
+def write(path: Union[str, PathLike[str]], V: Vertices, F: Faces, *, binary: bool = False) -> None:
+    """writes an OFF, OBJ, PLY or STL file (by extension); binary PLY or STL with binary=True."""
+
+def inspect(
+    V: Vertices,
+    F: Faces,
+    *,
+    spike_angle: float = 100.0,
+    small_hole: int = 100,
+    small_component: int = 400,
+    t_junction_tolerance: Optional[float] = None,
+    self_intersections: bool = True,
+    progress: Progress = None,
+) -> Report:
+    """counts every defect mrepair fixes and the quality figures (`mrepair inspect --json`)."""
+
+def soup_to_manifold(
+    V: Vertices,
+    F: Faces,
+    *,
+    epsilon: float = 0.0,
+    merge_epsilon: float = 0.0,
+    keep_two_sided: bool = False,
+    orient_outward: bool = True,
+    progress: Progress = None,
+) -> Result:
+    """any polygon soup to a consistently oriented manifold triangle mesh (`mrepair soup`)."""
+
+def close_gaps(
+    V: Vertices,
+    F: Faces,
+    tolerance: Optional[float] = None,
+    *,
+    relative: bool = False,
+    steps: Optional[int] = None,
+    lambda_: float = 0.5,
+    keep_pinched: bool = False,
+    progress: Progress = None,
+) -> Result:
+    """closes cracks, gaps and T-junctions narrower than `tolerance` (`mrepair close-gaps`).
+
+    tolerance=None raises ValueError: there is no automatic tolerance yet."""
+
+def clean(
+    V: Vertices,
+    F: Faces,
+    *,
+    profile: str = "scan",
+    only: Union[None, str, Iterable[str]] = None,
+    skip: Union[None, str, Iterable[str]] = None,
+    spike_angle: Optional[float] = None,
+    max_hole: int = 100,
+    min_component: int = 400,
+    iterations: int = 5,
+    boundary_angle: float = 120.0,
+    density: float = 1.0,
+    fair: bool = False,
+    progress: Progress = None,
+) -> Result:
+    """the RameshCleaner pipeline on a manifold mesh (`mrepair clean`)."""
+
+def repair(
+    V: Vertices,
+    F: Faces,
+    *,
+    profile: str = "auto",
+    close_gaps: float = 0.0,
+    merge_epsilon: float = 0.0,
+    spike_angle: Optional[float] = None,
+    max_hole: Optional[int] = None,
+    min_component: int = 400,
+    iterations: int = 5,
+    self_intersections: bool = True,
+    progress: Progress = None,
+) -> Result:
+    """the whole job of `mrepair repair`, keeping the user's model."""
+
+def remesh(
+    V: Vertices,
+    F: Faces,
+    *,
+    edge_length: Optional[float] = None,
+    tolerance: Optional[float] = None,
+    faces: Optional[int] = None,
+    feature_angle: float = 44.0,
+    iterations: int = 10,
+    min_edge_length: Optional[float] = None,
+    max_edge_length: Optional[float] = None,
+    protect_features: bool = False,
+    progress: Progress = None,
+) -> Result:
+    """isotropic remeshing to edge_length, to about `faces` faces, or adaptive to `tolerance`."""
+
+class GapClosingSequence:
+    """the progressive gap closing as a sequence to step through (and back to the exact input)."""
+
+    def __init__(
+        self, V: Vertices, F: Faces, tolerance: float, *, relative: bool = False, lambda_: float = 0.5
+    ) -> None: ...
+    def forward(self, steps: int = 1) -> int:
+        """applies up to `steps` contractions; returns how many."""
+    def backward(self, steps: int = 1) -> int:
+        """undoes up to `steps` contractions; returns how many."""
+    def to_distance(self, distance: float) -> int:
+        """moves to the given error level; returns contractions applied (> 0) or undone (< 0)."""
+    def mesh(self) -> Tuple[npt.NDArray[np.float64], FacesOut]:
+        """the mesh at the current position."""
+    def report(self) -> Report:
+        """the counters of the current position."""
+    @property
+    def position(self) -> int: ...
+    @property
+    def size(self) -> int: ...
+    @property
+    def current_distance(self) -> float: ...
+    @property
+    def max_distance(self) -> float: ...
+
+def progress_bar(bar: Any) -> Callable[[str, float], None]:
+    """a progress callable that drives a tqdm bar."""

@@ -1,0 +1,273 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// The Python module `mrepair._mrepair`: files, inspection, soup to manifold
+// and the whole repair job. Each call copies the caller's arrays, runs the
+// library without the GIL and returns new arrays and the report of the
+// matching `mrepair` command as a dict (without the sections that describe
+// files). The mesh calls are in mesh_calls.cpp.
+#include "binding.h"
+
+#include <mrepair/inspect.h>
+#include <mrepair/io.h>
+#include <mrepair/repair.h>
+#include <mrepair/stitch_soup.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+
+namespace mrepair {
+namespace python {
+namespace {
+
+namespace MP = mrepair::parameters;
+
+// a str or an os.PathLike, as a path
+std::string path_of(const py::object& path)
+{
+  return py::str(py::module_::import("os").attr("fspath")(path));
+}
+
+py::tuple read(const py::object& path_object)
+{
+  const std::string path = path_of(path_object);
+  Soup s;
+  const Io_result r = without_gil([&] { return read_polygon_soup(path, s.points, s.polygons); });
+  // non-finite points are data a repair fixes; invalid indices cannot travel in arrays
+  if (r.status == Status::io_error) raise_error(PyExc_OSError, r.message);
+  if (r.status != Status::ok && r.status != Status::non_finite_input)
+    raise_value_error(r.message.empty() ? path + ": " + to_string(r.status) : r.message);
+  auto arrays = arrays_of(s.points, s.polygons);
+  return py::make_tuple(arrays.first, arrays.second);
+}
+
+void write(const py::object& path_object, const py::object& vertices, const py::object& faces,
+           bool binary)
+{
+  const std::string path = path_of(path_object);
+  Soup s = soup_from(vertices, faces);
+  const Io_result r =
+      without_gil([&] { return write_polygon_soup(path, s.points, s.polygons, binary); });
+  if (r.status == Status::io_error) raise_error(PyExc_OSError, r.message);
+  if (r.status != Status::ok)
+    raise_value_error(r.message.empty() ? path + ": " + to_string(r.status) : r.message);
+}
+
+// `mrepair inspect`: the soup's counts, and the border loops of the mesh
+// view when the polygons form a mesh (the same sections as the command).
+py::object inspect(const py::object& vertices, const py::object& faces, double spike_angle,
+                   long long small_hole, long long small_component,
+                   const std::optional<double>& t_junction_tolerance, bool self_intersections,
+                   const py::object& progress)
+{
+  if (!(spike_angle >= 0 && spike_angle <= 180))
+    raise_value_error("spike_angle expects degrees in [0, 180]");
+  if (small_hole < 0 || small_component < 0)
+    raise_value_error("small_hole and small_component must not be negative");
+  const double tol = t_junction_tolerance ? *t_junction_tolerance : -1.;  // < 0: relative default
+  if (t_junction_tolerance && !(tol >= 0 && std::isfinite(tol)))
+    raise_value_error("t_junction_tolerance expects a non-negative distance");
+  Soup s = soup_from(vertices, faces);
+  Python_visitor visitor(progress);
+  auto thresholds = [&](bool count_si) {
+    return MP::spike_angle(
+               spike_angle,
+               MP::max_hole_vertices(
+                   static_cast<std::size_t>(small_hole),
+                   MP::min_component_faces(static_cast<std::size_t>(small_component),
+                                           MP::t_junction_tolerance(
+                                               tol, MP::count_self_intersections(count_si)))))
+        .visitor(std::ref(visitor));
+  };
+  Report report;
+  without_gil([&] {
+    Inspection_report soup = inspect_polygon_soup(s.points, s.polygons, thresholds(self_intersections));
+    soup.to_report(report);
+    Report& mesh_section = report.section("mesh");
+    const bool is_mesh = soup.invalid_polygons == 0 && !s.polygons.empty() &&
+                         is_polygon_soup_a_polygon_mesh(s.polygons, s.points.size());
+    mesh_section.add("built", is_mesh);
+    if (is_mesh) {
+      Mesh mesh;
+      CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(s.points, s.polygons, mesh);
+      // the soup pass counted everything else (self-intersections included)
+      Inspection_report m = mrepair::inspect(mesh, thresholds(false));
+      mesh_section.add("boundary_loops", m.boundary_loops);
+      mesh_section.add("small_holes", m.small_holes);
+    } else {
+      mesh_section.add("reason", soup.invalid_polygons > 0
+                                     ? "invalid polygons"
+                                     : "not a manifold, consistently oriented polygon mesh");
+    }
+    return 0;
+  });
+  visitor.raise_if_stopped();
+  return dict_of(report);
+}
+
+// `mrepair soup`: polygon soup to oriented manifold triangle mesh.
+py::tuple soup_to_manifold(const py::object& vertices, const py::object& faces, double epsilon,
+                           double merge_epsilon, bool keep_two_sided, bool orient_outward,
+                           const py::object& progress)
+{
+  if (!(epsilon >= 0) || !(merge_epsilon >= 0))
+    raise_value_error("epsilon and merge_epsilon expect non-negative distances");
+  Soup s = soup_from(vertices, faces);
+  Python_visitor visitor(progress);
+  Report report;
+  Mesh mesh;
+  const Soup_repair_result r = without_gil([&] {
+    inspect_polygon_soup(s.points, s.polygons, MP::count_self_intersections(false))
+        .to_summary_report(report.section("before"));
+    Soup_repair_result result = polygon_soup_to_manifold_mesh(
+        s.points, s.polygons, mesh,
+        MP::snap_epsilon(epsilon, MP::merge_epsilon(merge_epsilon,
+                                                    MP::keep_two_sided(keep_two_sided,
+                                                                       MP::orient_outward(orient_outward))))
+            .visitor(std::ref(visitor)));
+    result.to_report(report.section("soup"));
+    if (succeeded(result.status))
+      mrepair::inspect(mesh, MP::count_self_intersections(false))
+          .to_summary_report(report.section("after"));
+    return result;
+  });
+  visitor.raise_if_stopped();
+  if (!succeeded(r.status)) raise_value_error(status_line(r.status, r.message));
+  return result_of(mesh, report);
+}
+
+// `mrepair repair`: the whole job of repair.h.
+py::tuple repair(const py::object& vertices, const py::object& faces, const std::string& profile,
+                 double close_gaps, double merge_epsilon, const std::optional<double>& spike_angle,
+                 const std::optional<long long>& max_hole, long long min_component,
+                 long long iterations, bool self_intersections, const py::object& progress)
+{
+  Repair_options options;
+  if (!parse_input_profile(profile, options.profile))
+    raise_value_error("profile must be 'auto', 'scan' or 'cad', got '" + profile + "'");
+  if (!(close_gaps >= 0) || !(merge_epsilon >= 0) || !std::isfinite(close_gaps) ||
+      !std::isfinite(merge_epsilon))
+    raise_value_error("close_gaps and merge_epsilon must be finite and >= 0");
+  if ((max_hole && *max_hole < 1) || min_component < 1 || iterations < 0)
+    raise_value_error("max_hole and min_component must be >= 1, iterations >= 0");
+  options.gap_tolerance = close_gaps;
+  options.merge_epsilon = merge_epsilon;
+  options.spike_angle = spike_angle ? *spike_angle : std::numeric_limits<double>::quiet_NaN();
+  if (max_hole) options.max_hole_vertices = static_cast<std::size_t>(*max_hole);
+  options.min_component_faces = static_cast<std::size_t>(min_component);
+  options.max_clean_iterations = static_cast<std::size_t>(iterations);
+  options.count_self_intersections = self_intersections;
+
+  Soup s = soup_from(vertices, faces);
+  Python_visitor visitor(progress);
+  Mesh mesh;
+  const Repair_result r = without_gil([&] {
+    return repair_polygon_soup(s.points, s.polygons, mesh, options,
+                               CGAL::parameters::visitor(std::ref(visitor)));
+  });
+  visitor.raise_if_stopped();
+  if (!r.failed_stage.empty()) raise_value_error(r.message);
+  // the command writes its output and exits 1: nothing to return here
+  if (!succeeded(r.status)) raise_value_error("clean: " + status_line(r.status, r.clean.message));
+  Report report;
+  r.to_report(report);
+  return result_of(mesh, report);
+}
+
+} // namespace
+} // namespace python
+} // namespace mrepair
+
+PYBIND11_MODULE(_mrepair, m)
+{
+  namespace py = pybind11;
+  namespace mp = mrepair::python;
+  using namespace pybind11::literals;
+  m.doc() = "mrepair: mesh repair and remeshing on CGAL (the compiled part of the package)";
+
+  PyObject* cancelled = PyErr_NewExceptionWithDoc(
+      "mrepair.Cancelled",
+      "raised when a progress callable returns False; a KeyboardInterrupt, so that "
+      "code handling Ctrl-C handles it too",
+      PyExc_KeyboardInterrupt, nullptr);
+  if (!cancelled) throw py::error_already_set();
+  mp::cancelled_type() = cancelled;
+  m.attr("Cancelled") = py::handle(cancelled);
+
+  m.def("read", &mp::read, "path"_a,
+        R"doc(Reads an OFF, OBJ, PLY or STL file (by extension) as a polygon soup.
+
+Returns V, a float64 (N, 3) array, and F, an int64 (M, 3) array when every
+face is a triangle, else a list of index lists. Points with NaN or infinite
+coordinates are returned as read (repair removes them). Raises OSError when
+the file cannot be read, ValueError when it is malformed, empty, of an
+unknown kind, or has faces with out-of-range indices.)doc");
+
+  m.def("write", &mp::write, "path"_a, "V"_a, "F"_a, py::kw_only(), "binary"_a = false,
+        R"doc(Writes vertices and faces to an OFF, OBJ, PLY or STL file (by extension);
+binary=True writes binary PLY or STL. ASCII OFF, OBJ and PLY and binary PLY
+keep every coordinate exactly. Raises OSError or ValueError.)doc");
+
+  m.def("inspect", &mp::inspect, "V"_a, "F"_a, py::kw_only(), "spike_angle"_a = 100.0,
+        "small_hole"_a = 100, "small_component"_a = 400, "t_junction_tolerance"_a = py::none(),
+        "self_intersections"_a = true, "progress"_a = py::none(),
+        R"doc(Returns the report, a dict.
+
+Counts every defect mrepair fixes (doc/defects.md) and the quality figures;
+returns the report of `mrepair inspect --json` as a dict: status, kind,
+sections input, defects, quality, thresholds and mesh (border loops when
+the faces form a mesh).
+
+spike_angle: dihedral angle in degrees above which an edge is spiked.
+small_hole: boundary loops with fewer edges are small holes.
+small_component: components with fewer faces are small.
+t_junction_tolerance: distance of a T-junction (None: 1e-4 x bbox diagonal).
+self_intersections: count self-intersecting face pairs (the costly test).
+progress: None or progress(phase: str, fraction: float); returning False cancels.)doc");
+
+  m.def("soup_to_manifold", &mp::soup_to_manifold, "V"_a, "F"_a, py::kw_only(),
+        "epsilon"_a = 0.0, "merge_epsilon"_a = 0.0, "keep_two_sided"_a = false,
+        "orient_outward"_a = true, "progress"_a = py::none(),
+        R"doc(Returns (V, F, report).
+
+Turns any polygon soup into a consistently oriented manifold triangle mesh
+(cutting and stitching): merges points, drops invalid, degenerate and
+duplicate faces, cuts non-manifold edges and vertices, orients, stitches.
+The report is that of `mrepair soup --json`: before, soup, after.
+
+epsilon: stitch boundary edges whose ends lie within this distance (0: off).
+merge_epsilon: merge points within this distance first (0: equal points only).
+keep_two_sided: keep both faces of a two-sided sheet.
+orient_outward: closed components bound a volume.
+Raises ValueError when the soup holds nothing to build (e.g. no face).
+progress: None or progress(phase, fraction); returning False cancels
+  (mrepair.Cancelled), as Ctrl-C does (KeyboardInterrupt).)doc");
+
+  m.def("repair", &mp::repair, "V"_a, "F"_a, py::kw_only(), "profile"_a = "auto",
+        "close_gaps"_a = 0.0, "merge_epsilon"_a = 0.0, "spike_angle"_a = py::none(),
+        "max_hole"_a = py::none(), "min_component"_a = 400, "iterations"_a = 5,
+        "self_intersections"_a = true, "progress"_a = py::none(),
+        R"doc(Returns (V, F, report).
+
+The whole job of `mrepair repair`, keeping the user's model: soup to manifold
+mesh when the input is not one, gap closing when asked, the cleaning steps of
+the input's profile (a dense scan gets RameshCleaner, a CAD export or print
+model keeps its geometry and parts and gets its holes closed), the validity
+step. The report is that of `mrepair repair --json` without the file
+sections: before, soup_to_manifold, triangulation (when polygons were
+triangulated), close_gaps (when asked), clean, face_accounting, after.
+
+profile: "auto" (decided from the mesh), "scan" or "cad".
+close_gaps: close boundary gaps narrower than this (model units; 0: off).
+merge_epsilon: merge soup points closer than this before stitching.
+spike_angle: dihedral angle (degrees) of a spiked vertex (None: the default).
+max_hole: holes with fewer boundary vertices are filled (None: 100 scan, 500 cad).
+min_component: components with fewer faces are removed (relative to the largest).
+iterations: cleaning iteration cap.
+self_intersections: count self-intersections in the inspection after.
+Raises ValueError with the stage and the reason when a stage fails.
+progress: None or progress(phase, fraction); returning False cancels
+  (mrepair.Cancelled), as Ctrl-C does (KeyboardInterrupt).)doc");
+
+  mp::register_mesh_calls(m);
+}
