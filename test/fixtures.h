@@ -45,6 +45,26 @@ struct Soup
   std::vector<Polygon> polygons;
 };
 
+// `s` moved by (dx, dy, dz).
+inline Soup translated(Soup s, double dx, double dy, double dz)
+{
+  for (Point& p : s.points) p = Point(p.x() + dx, p.y() + dy, p.z() + dz);
+  return s;
+}
+
+// The polygons of `a` and of `b` in one soup (separate components).
+inline Soup merged(const Soup& a, const Soup& b)
+{
+  Soup s = a;
+  const std::size_t off = a.points.size();
+  s.points.insert(s.points.end(), b.points.begin(), b.points.end());
+  for (Polygon p : b.polygons) {
+    for (std::size_t& i : p) i += off;
+    s.polygons.push_back(p);
+  }
+  return s;
+}
+
 /// `nx` x `ny` squares of side `step` in the plane z = 0, each split in two
 /// triangles (quads when `quads`), counter-clockwise seen from +z.
 inline Soup grid(std::size_t nx, std::size_t ny, double step = 1.0, bool quads = false)

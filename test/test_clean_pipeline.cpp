@@ -29,24 +29,6 @@ using namespace mrepair_test;
 namespace MP = mrepair::parameters;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-Soup translated(Soup s, double dx, double dy, double dz)
-{
-  for (Point& p : s.points) p = Point(p.x() + dx, p.y() + dy, p.z() + dz);
-  return s;
-}
-
-Soup merged(const Soup& a, const Soup& b)
-{
-  Soup s = a;
-  const std::size_t off = a.points.size();
-  s.points.insert(s.points.end(), b.points.begin(), b.points.end());
-  for (Polygon p : b.polygons) {
-    for (std::size_t& i : p) i += off;
-    s.polygons.push_back(p);
-  }
-  return s;
-}
-
 // Removes the triangles of grid cells [i0, i0+w) x [j0, j0+h) of `grid(nx, .)`.
 Soup punched(Soup s, std::size_t nx, std::size_t i0, std::size_t j0, std::size_t w, std::size_t h)
 {

@@ -51,18 +51,6 @@ Soup without_polygons(Soup s, std::set<std::size_t> drop)
   return out;
 }
 
-// appends `b` to `a` (indices shifted).
-Soup merged(Soup a, const Soup& b)
-{
-  const std::size_t n = a.points.size();
-  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
-  for (Polygon p : b.polygons) {
-    for (auto& i : p) i += n;
-    a.polygons.push_back(p);
-  }
-  return a;
-}
-
 // drops the points no polygon uses (indices remapped).
 Soup compacted(const Soup& s)
 {
@@ -81,12 +69,6 @@ Soup compacted(const Soup& s)
     out.polygons.push_back(p);
   }
   return out;
-}
-
-Soup translated(Soup s, double dx, double dy, double dz)
-{
-  for (auto& p : s.points) p = Point(p.x() + dx, p.y() + dy, p.z() + dz);
-  return s;
 }
 
 std::size_t grid_index(std::size_t nx, std::size_t i, std::size_t j) { return j * (nx + 1) + i; }

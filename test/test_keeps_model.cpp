@@ -23,6 +23,7 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -31,24 +32,6 @@ using namespace mrepair_test;
 namespace MP = mrepair::parameters;
 using mrepair::Input_profile;
 using mrepair::Status;
-
-Soup translated(Soup s, double dx, double dy, double dz)
-{
-  for (Point& p : s.points) p = Point(p.x() + dx, p.y() + dy, p.z() + dz);
-  return s;
-}
-
-Soup merged(const Soup& a, const Soup& b)
-{
-  Soup s = a;
-  const std::size_t off = a.points.size();
-  s.points.insert(s.points.end(), b.points.begin(), b.points.end());
-  for (Polygon p : b.polygons) {
-    for (std::size_t& i : p) i += off;
-    s.polygons.push_back(p);
-  }
-  return s;
-}
 
 Soup triangle(double x)
 {
@@ -261,6 +244,43 @@ TYPED_TEST(Keeps_model, jagged_border_is_eroded_within_its_budget)
   Mesh t = to_mesh<Mesh>(tiny);
   mrepair::clean_boundaries(t, MP::jagged_loop_turning(0.0));
   EXPECT_GT(face_count(t), 0u);
+}
+
+// The loop measures of the boundary policy, on turn sequences (degrees).
+TEST(Keeps_model_measures, jaggedness_counts_only_turns_undone_nearby)
+{
+  using Turns = std::vector<std::pair<int, double>>;
+  const double deg = 3.14159265358979323846 / 180.;
+  auto loop = [&](std::initializer_list<double> t, std::size_t repeat = 1) {
+    Turns out;
+    for (std::size_t k = 0; k < repeat; ++k)
+      for (double a : t) out.emplace_back(int(out.size()), a * deg);
+    return out;
+  };
+  namespace SC = mrepair::internal::clean_pipeline;
+  // a square, and a convex polygon: one way, no jaggedness
+  EXPECT_NEAR(SC::loop_jaggedness(loop({90, 0, 0, 90, 0, 0, 90, 0, 0, 90, 0, 0})), 0., 1e-12);
+  EXPECT_NEAR(SC::loop_jaggedness(loop({10}, 36)), 0., 1e-12);
+  // a slow change of sign (a cut Moebius strip): +8 on one half, -9 on the
+  // other: far under 2 pi, though its total turning exceeds its net by 2 pi
+  Turns moebius = loop({8}, 40);
+  for (double a : {-90., 0., -90.})
+    moebius.emplace_back(int(moebius.size()), a * deg);
+  for (int k = 0; k < 40; ++k) moebius.emplace_back(int(moebius.size()), -9. * deg);
+  EXPECT_LT(SC::loop_jaggedness(moebius), 60. * deg);
+  // one ear on a straight border: twice its undone turn (2 x 126 degrees)
+  Turns ear = loop({0, 0, 0, 63, -127, 63, 0, 0, 0, 90, 90, 90});
+  EXPECT_NEAR(SC::loop_jaggedness(ear), 252. * deg, 1. * deg);
+  // a zigzag of +-30 degrees at every vertex: 30 per vertex
+  EXPECT_NEAR(SC::loop_jaggedness(loop({30, -30}, 50)), 3000. * deg, 1e-9);
+  // teeth: the ear's three vertices, never a corner
+  std::vector<int> teeth;
+  SC::mark_local_teeth(ear, 2, 180. * deg, [&](int v) { teeth.push_back(v); });
+  EXPECT_EQ(teeth, (std::vector<int>{3, 4, 5}));
+  teeth.clear();
+  SC::mark_local_teeth(loop({90, 0, 90, 0, 90, 0, 90, 0}), 2, 180. * deg,
+                       [&](int v) { teeth.push_back(v); });
+  EXPECT_TRUE(teeth.empty());
 }
 
 TYPED_TEST(Keeps_model, non_planar_pentagon_terminates)

@@ -146,12 +146,6 @@ Soup moebius(int n = 12)
   return s;
 }
 
-Soup translated(Soup s, double dx, double dy, double dz)
-{
-  for (Point& p : s.points) p = Point(p.x() + dx, p.y() + dy, p.z() + dz);
-  return s;
-}
-
 Soup& append(Soup& a, const Soup& b)
 {
   std::size_t off = a.points.size();

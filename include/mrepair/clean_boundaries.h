@@ -220,11 +220,10 @@ std::size_t smooth_boundary_ring(PM& pm, const VPM& vpm, std::size_t iterations,
 /// \endcode
 /// The mesh stays a valid manifold mesh after every removal.
 ///
-/// Safety policy (doc/guarantees.md): a loop is jagged when its total
-/// absolute turning exceeds its net turning by more than
-/// `jagged_loop_turning` x 2 pi (a scan border that zigzags); a tooth is a
-/// window of 5 border vertices whose turning exceeds its net turning by half
-/// that (a dangling ear, a border face folded back). Straight and convex
+/// Safety policy (doc/guarantees.md): a loop is jagged when the turning it
+/// undoes within a vertex or two exceeds `jagged_loop_turning` x 2 pi (a scan
+/// border that zigzags); a tooth is a window of 5 border vertices whose
+/// undone turning exceeds half that (a dangling ear). Straight and convex
 /// borders, and the corners of sheets, are neither: they keep their shape.
 /// Each loop loses at most `boundary_erosion_share` of the faces of its
 /// confidence region, and components smaller than 4 x
@@ -320,7 +319,7 @@ Boundary_cleaning_result clean_boundaries(
       const int l = int(jagged.size());
       SC::loop_turns(h, pmesh, vpm, turns);
       for (const auto& t : turns) put(loop_of, t.first, l);
-      const bool whole = SC::jaggedness(turns.begin(), turns.end()) > jag_turning * two_pi;
+      const bool whole = SC::loop_jaggedness(turns) > jag_turning * two_pi;
       jagged.push_back(whole);
       if (whole)
         for (const auto& t : turns) put(erodible, t.first, true);

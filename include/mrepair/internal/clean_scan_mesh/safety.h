@@ -104,37 +104,19 @@ double jaggedness(Iterator first, Iterator last)
   return total - std::abs(signed_total);
 }
 
-/// Jaggedness (radians) of the boundary loop of border halfedge `h`. A loop
-/// that turns one way, however often it winds (a convex sheet border, a
-/// smoothly curved CAD patch edge, the boundary of a Moebius strip), has
-/// none; each reflex corner adds twice its angle (an L-shaped plate: pi); a
-/// scan border that zigzags at the scale of its triangles adds at every tooth.
-template <typename PM, typename VPM>
-double loop_jaggedness(typename boost::graph_traits<PM>::halfedge_descriptor h, const PM& pm,
-                       const VPM& vpm)
-{
-  std::vector<std::pair<typename boost::graph_traits<PM>::vertex_descriptor, double>> turns;
-  loop_turns(h, pm, vpm, turns);
-  return jaggedness(turns.begin(), turns.end());
-}
-
-/// Calls `mark(v)` for the vertices of `turns` (one loop, in order) at the
-/// centre of a window of 2 * `half_width` + 1 turns whose jaggedness exceeds
-/// `threshold`: a local tooth (a dangling ear, a border face folded back)
-/// on a loop that is straight elsewhere. A corner, however sharp, has
-/// no jaggedness of its own.
-template <typename Turns, typename Mark>
-void mark_local_teeth(const Turns& turns, std::size_t half_width, double threshold,
-                      const Mark& mark)
+/// Calls `f(i, j)` for each vertex i of `turns` (one loop, in order) with
+/// the jaggedness j of the cyclic window of 2 * `half_width` + 1 turns
+/// centred on it (the whole loop when it is shorter than that).
+template <typename Turns, typename F>
+void for_each_turn_window(const Turns& turns, std::size_t half_width, const F& f)
 {
   const std::size_t n = turns.size();
   if (n == 0) return;
   if (n <= 2 * half_width + 1) {
-    if (jaggedness(turns.begin(), turns.end()) > threshold)
-      for (const auto& t : turns) mark(t.first);
+    const double j = jaggedness(turns.begin(), turns.end());
+    for (std::size_t i = 0; i < n; ++i) f(i, j);
     return;
   }
-  // sliding window over the cyclic sequence
   double total = 0., signed_total = 0.;
   auto add_turn = [&](std::size_t i, double s) {
     total += s * std::abs(turns[i % n].second);
@@ -142,10 +124,39 @@ void mark_local_teeth(const Turns& turns, std::size_t half_width, double thresho
   };
   for (std::size_t i = 0; i <= 2 * half_width; ++i) add_turn(n - half_width + i, 1.);
   for (std::size_t c = 0; c < n; ++c) {
-    if (total - std::abs(signed_total) > threshold) mark(turns[c].first);
+    f(c, std::max(0., total - std::abs(signed_total)));
     add_turn(n - half_width + c, -1.);
     add_turn(c + half_width + 1, 1.);
   }
+}
+
+/// Jaggedness (radians) of a boundary loop given by its turns: half the sum,
+/// over its vertices, of the jaggedness of the 3 turns around each. Only a
+/// turn undone within a vertex or two counts, so a loop that turns one way
+/// (a convex sheet border, a CAD patch edge) has none, and so has a loop
+/// whose turning changes sign slowly (the border of a cut Moebius strip,
+/// curving one way on one side and the other way on the other); a tooth
+/// (a turn and its undoing, an ear) adds twice its angle, and a scan border
+/// that zigzags at the scale of its triangles adds at every vertex.
+template <typename Turns>
+double loop_jaggedness(const Turns& turns)
+{
+  double sum = 0.;
+  for_each_turn_window(turns, std::size_t(1), [&](std::size_t, double j) { sum += j; });
+  return 0.5 * sum;
+}
+
+/// Calls `mark(v)` for the vertices of `turns` (one loop, in order) at the
+/// centre of a window of 2 * `half_width` + 1 turns whose jaggedness exceeds
+/// `threshold`: a local tooth (a dangling ear) on a loop that is straight
+/// elsewhere. A corner, however sharp, has no jaggedness of its own.
+template <typename Turns, typename Mark>
+void mark_local_teeth(const Turns& turns, std::size_t half_width, double threshold,
+                      const Mark& mark)
+{
+  for_each_turn_window(turns, half_width, [&](std::size_t i, double j) {
+    if (j > threshold) mark(turns[i].first);
+  });
 }
 
 /// Area of the fan from the centroid of the loop of border halfedge `h` to
