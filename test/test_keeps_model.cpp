@@ -338,6 +338,30 @@ TYPED_TEST(Keeps_model, zero_length_edge_is_collapsed_without_moving_anything)
   EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
 }
 
+// Found by the random invariants (case 117): a detached two-face pillow
+// (a double-sided fin) that an earlier step flattened. Neither face can be
+// fixed by a local edit, but the pair is a duplicate and goes; it must not
+// be counted as a degenerate face left.
+TYPED_TEST(Keeps_model, flattened_pillow_goes_as_a_duplicate_pair)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = cube(1.0);
+  const std::size_t a = s.points.size();
+  s.points.emplace_back(3, 0, 0);
+  s.points.emplace_back(4, 0, 0);
+  s.points.emplace_back(5, 0, 0);  // collinear: both faces are degenerate
+  s.polygons.push_back({a, a + 1, a + 2});
+  s.polygons.push_back({a + 2, a + 1, a});
+  Mesh m = to_mesh<Mesh>(s);
+  ASSERT_EQ(face_count(m), 14u);
+  mrepair::Validity_result v = mrepair::ensure_valid_mesh(m);
+  EXPECT_EQ(v.status, Status::ok) << v.message;
+  EXPECT_EQ(v.degenerate_faces_left, 0u);
+  EXPECT_EQ(v.duplicate_faces_removed, 2u);
+  EXPECT_EQ(face_count(m), 12u);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+}
+
 TYPED_TEST(Keeps_model, moebius_strip_stays_an_open_strip)
 {
   using Mesh = typename TypeParam::Mesh;

@@ -109,7 +109,10 @@ public:
     return a == b || b == c || a == c || CGAL::collinear(a, b, c);
   }
 
-  std::size_t run(std::size_t cap)
+  // Fixes what it can; the faces left are counted by the caller once the
+  // duplicate faces are gone too (a pillow flattened by an earlier step is
+  // degenerate, and goes as a duplicate pair).
+  void run(std::size_t cap)
   {
     for (face_descriptor f : faces(pm_))
       if (degenerate(f)) queue_.insert(f);
@@ -123,11 +126,6 @@ public:
       ++r.operations;
       if (!fix(f)) stuck.insert(f);
     }
-    // faces left: those that could not be fixed and those the cap cut off
-    std::size_t left = 0;
-    for (face_descriptor f : faces(pm_))
-      if (degenerate(f)) ++left;
-    return left;
   }
 
 private:
@@ -326,8 +324,30 @@ Validity_result ensure_valid_mesh(PolygonMesh& pmesh,
     r.message = "ensure_valid_mesh needs a triangle mesh";
     return r;
   }
+  // Pillows first (two faces sharing all three edges, a detached double-sided
+  // fin): an earlier step may have flattened one, and no local edit fixes a
+  // degenerate pillow face, but the pair is a duplicate and goes whole.
+  // Linear: each face looks across its three edges.
+  {
+    std::vector<face_descriptor> pillow_faces;
+    for (face_descriptor f : faces(pmesh)) {
+      face_descriptor g = GT::null_face();
+      bool pillow = true;
+      for (auto h : CGAL::halfedges_around_face(halfedge(f, pmesh), pmesh)) {
+        const auto o = opposite(h, pmesh);
+        if (is_border(o, pmesh) || (g != GT::null_face() && face(o, pmesh) != g)) {
+          pillow = false;
+          break;
+        }
+        g = face(o, pmesh);
+      }
+      if (pillow && g != f) pillow_faces.push_back(f);  // both faces are listed
+    }
+    for (face_descriptor f : pillow_faces) CGAL::Euler::remove_face(halfedge(f, pmesh), pmesh);
+    r.duplicate_faces_removed += pillow_faces.size();
+  }
   internal::validity::Degeneracy_fixer<PolygonMesh, decltype(vpm)> fixer(pmesh, vpm, r);
-  r.degenerate_faces_left = fixer.run(cap);
+  fixer.run(cap);
 
   // Duplicate faces: the same three vertices.
   {
@@ -380,6 +400,10 @@ Validity_result ensure_valid_mesh(PolygonMesh& pmesh,
 
   r.non_manifold_vertices_split = CGAL::Polygon_mesh_processing::duplicate_non_manifold_vertices(
       pmesh, CGAL::parameters::vertex_point_map(vpm));
+
+  // faces left: those no local edit could fix and those the cap cut off
+  for (face_descriptor f : faces(pmesh))
+    if (fixer.degenerate(f)) ++r.degenerate_faces_left;
 
   if (r.degenerate_faces_left > 0) {
     r.status = Status::partial;
