@@ -1,0 +1,173 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// The small tools every algorithm uses, written once: double-precision vector
+// helpers on any point type, angle constants, the mesh-type trait that decides
+// whether a dynamic property map is an array (safe to write from threads),
+// the TBB loop, the coordinate-range guard and a union-find.
+#ifndef MREPAIR_INTERNAL_UTILITY_H
+#define MREPAIR_INTERNAL_UTILITY_H
+
+#include <mrepair/internal/coordinate_range.h>
+
+#include <CGAL/Surface_mesh/Surface_mesh_fwd.h>
+#include <CGAL/number_utils.h>
+#include <boost/property_map/property_map.hpp>
+
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#endif
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <numeric>
+#include <type_traits>
+#include <vector>
+
+namespace mrepair {
+namespace internal {
+
+// ---- constants ---------------------------------------------------------------
+constexpr double pi = 3.14159265358979323846;
+constexpr double two_pi = 2. * pi;
+constexpr double radians_per_degree = pi / 180.;
+constexpr double degrees_per_radian = 180. / pi;
+inline double to_radians(double degrees) { return degrees * radians_per_degree; }
+inline double to_degrees(double radians) { return radians * degrees_per_radian; }
+
+// ---- vectors -----------------------------------------------------------------
+using Vec3 = std::array<double, 3>;
+
+inline Vec3 sub(const Vec3& a, const Vec3& b) { return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}}; }
+inline Vec3 add(const Vec3& a, const Vec3& b) { return {{a[0] + b[0], a[1] + b[1], a[2] + b[2]}}; }
+inline Vec3 mul(const Vec3& a, double s) { return {{a[0] * s, a[1] * s, a[2] * s}}; }
+inline Vec3 neg(const Vec3& a) { return {{-a[0], -a[1], -a[2]}}; }
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 cross(const Vec3& a, const Vec3& b)
+{
+  return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
+}
+inline double squared_norm(const Vec3& a) { return dot(a, a); }
+inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+inline double distance(const Vec3& a, const Vec3& b) { return norm(sub(a, b)); }
+inline bool is_zero(const Vec3& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
+inline bool is_finite(const Vec3& a)
+{
+  return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
+}
+/// `a` scaled to unit length, or the zero vector when `a` has no length.
+inline Vec3 normalized(const Vec3& a)
+{
+  const double n = norm(a);
+  return n > 0 && std::isfinite(n) ? mul(a, 1. / n) : Vec3{{0, 0, 0}};
+}
+/// angle between two vectors in [0, pi]; the atan2 form stays accurate near 0
+/// and pi, where acos of a dot product loses half its digits. 0 if one is zero.
+inline double angle(const Vec3& a, const Vec3& b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
+
+/// any point type with x(), y(), z() (any kernel, exact ones included) in doubles.
+template <typename Point>
+Vec3 to_vec3(const Point& p)
+{
+  return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
+}
+
+/// the point of `v` in doubles.
+template <typename VertexPointMap, typename Vertex>
+Vec3 point(const VertexPointMap& vpm, Vertex v)
+{
+  return to_vec3(get(vpm, v));
+}
+
+/// stores `q` as the point of `v`, in the map's own point type.
+template <typename VertexPointMap, typename Vertex>
+void set_point(const VertexPointMap& vpm, Vertex v, const Vec3& q)
+{
+  using Point = typename boost::property_traits<VertexPointMap>::value_type;
+  put(vpm, v, Point(q[0], q[1], q[2]));
+}
+
+template <typename VertexPointMap, typename Vertex>
+bool is_finite_point(const VertexPointMap& vpm, Vertex v)
+{
+  return is_finite(point(vpm, v));
+}
+
+// ---- mesh types --------------------------------------------------------------
+/// true for `CGAL::Surface_mesh`: its dynamic property maps are arrays, which
+/// threads may write at distinct indices. `Polyhedron_3`'s are hash maps.
+template <typename T> struct Is_surface_mesh : std::false_type {};
+template <typename P> struct Is_surface_mesh<CGAL::Surface_mesh<P>> : std::true_type {};
+
+// ---- parallel loops ----------------------------------------------------------
+/// calls f(i) for i in [0, n), with TBB when it is linked and the range holds
+/// more than one grain.
+template <typename F>
+void parallel_for_index(std::size_t n, std::size_t grain, const F& f)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  if (n > grain) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+                      });
+    return;
+  }
+#endif
+  for (std::size_t i = 0; i < n; ++i) f(i);
+}
+
+/// the same loop over work that writes a dynamic property map of `Mesh`: in
+/// parallel only where those maps are arrays, and only past 20,000 items,
+/// below which the threads cost more than they save.
+template <typename Mesh, typename F>
+void parallel_for_mesh_elements(std::size_t n, const F& f, bool allowed = true)
+{
+  if (allowed && Is_surface_mesh<Mesh>::value && n > 20000)
+    parallel_for_index(n, 4096, f);
+  else
+    for (std::size_t i = 0; i < n; ++i) f(i);
+}
+
+// ---- union-find --------------------------------------------------------------
+/// disjoint sets over [0, n), with path halving; the smaller index is the root,
+/// so that roots do not depend on the order of the unions.
+template <typename Index = std::size_t>
+class Union_find
+{
+public:
+  explicit Union_find(std::size_t n = 0) { reset(n); }
+  void reset(std::size_t n)
+  {
+    parent_.resize(n);
+    std::iota(parent_.begin(), parent_.end(), Index(0));
+  }
+  std::size_t size() const { return parent_.size(); }
+  Index find(Index x)
+  {
+    while (parent_[x] != x) {
+      parent_[x] = parent_[parent_[x]];
+      x = parent_[x];
+    }
+    return x;
+  }
+  /// joins the sets of x and y; true when they were apart.
+  bool unite(Index x, Index y)
+  {
+    x = find(x);
+    y = find(y);
+    if (x == y) return false;
+    if (x < y) std::swap(x, y);
+    parent_[x] = y;
+    return true;
+  }
+
+private:
+  std::vector<Index> parent_;
+};
+
+}  // namespace internal
+}  // namespace mrepair
+
+#endif  // MREPAIR_INTERNAL_UTILITY_H
