@@ -1,0 +1,194 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_INTERNAL_IO_CONVERT_H
+#define MREPAIR_INTERNAL_IO_CONVERT_H
+
+// Between the flat soup the readers and writers use and the user's types:
+// point and polygon vectors, and polygon meshes (built through the
+// manifoldness test of build_mesh.h). Running out of memory is reported in
+// the `Io_result`, never thrown.
+
+#include <mrepair/internal/io/build_mesh.h>
+#include <mrepair/internal/io/common.h>
+#include <mrepair/io_result.h>
+#include <mrepair/status.h>
+
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/number_utils.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <new>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace mrepair {
+namespace internal {
+namespace io {
+
+template <typename Point>
+double coordinate(const Point& p, int d)
+{
+  return CGAL::to_double(d == 0 ? p.x() : (d == 1 ? p.y() : p.z()));
+}
+
+/// moves what `raw` holds into `points` and `polygons` (empty on entry).
+template <class Point, class Polygon>
+void raw_to_soup(const std::string& path, Raw_soup& raw, std::vector<Point>& points,
+                 std::vector<Polygon>& polygons, Io_result& r)
+{
+  try {
+    using Index = typename Polygon::value_type;
+    points.reserve(raw.num_points());
+    for (std::size_t i = 0; i < raw.num_points(); ++i)
+      points.emplace_back(raw.xyz[3 * i], raw.xyz[3 * i + 1], raw.xyz[3 * i + 2]);
+    raw.xyz = std::vector<double>();
+    polygons.resize(raw.num_polygons());
+    for (std::size_t f = 0; f < raw.num_polygons(); ++f) {
+      Polygon& poly = polygons[f];
+      const std::size_t b = raw.starts[f], n = raw.starts[f + 1] - b;
+      poly.resize(n);
+      for (std::size_t k = 0; k < n; ++k) poly[k] = static_cast<Index>(raw.indices[b + k]);
+    }
+  } catch (const std::bad_alloc&) {
+    points.clear();
+    polygons.clear();
+    r = Io_result();
+    r.status = Status::io_error;
+    r.message = path + ": out of memory";
+  }
+}
+
+/// copies a soup into `raw`; false (and `r` says why) when memory ran out.
+template <class Point, class Polygon>
+bool soup_to_raw(const std::string& path, const std::vector<Point>& points,
+                 const std::vector<Polygon>& polygons, Raw_soup& raw, Io_result& r)
+{
+  try {
+    raw.xyz.reserve(3 * points.size());
+    for (const Point& p : points)
+      for (int d = 0; d < 3; ++d) raw.xyz.push_back(coordinate(p, d));
+    std::size_t corners = 0;
+    for (const Polygon& poly : polygons) corners += poly.size();
+    raw.indices.reserve(corners);
+    raw.starts.reserve(polygons.size() + 1);
+    for (const Polygon& poly : polygons) {
+      for (const auto& i : poly) {
+        // negative values of a signed index type and huge unsigned ones are out of range
+        std::int64_t v = static_cast<std::int64_t>(i);
+        if (std::is_unsigned<std::decay_t<decltype(i)>>::value &&
+            static_cast<std::uint64_t>(i) > static_cast<std::uint64_t>((std::numeric_limits<std::int64_t>::max)()))
+          v = -1;
+        raw.indices.push_back(v);
+      }
+      raw.starts.push_back(raw.indices.size());
+    }
+  } catch (const std::bad_alloc&) {
+    r.status = Status::io_error;
+    r.message = path + ": out of memory";
+    return false;
+  }
+  return true;
+}
+
+/// copies `pmesh` into `raw`, vertices numbered consecutively in the order of
+/// `vertices(pmesh)`; false (and `r` says why) when memory ran out.
+template <class PolygonMesh, class VertexPointMap, class NamedParameters>
+bool mesh_to_raw(const std::string& path, const PolygonMesh& pmesh, const VertexPointMap& vpm,
+                 const NamedParameters& np, Raw_soup& raw, Io_result& r)
+{
+  try {
+    // the mesh's own indices may have gaps (Surface_mesh with removed
+    // elements): renumber them consecutively in the order of vertices(pmesh)
+    auto vim = CGAL::get_initialized_vertex_index_map(pmesh, np);
+    std::size_t max_id = 0, nv = 0;
+    for (auto v : vertices(pmesh)) {
+      max_id = (std::max)(max_id, static_cast<std::size_t>(get(vim, v)));
+      ++nv;
+    }
+    std::vector<std::int64_t> renum(nv ? max_id + 1 : 0, -1);
+    raw.xyz.reserve(3 * nv);
+    std::int64_t next = 0;
+    for (auto v : vertices(pmesh)) {
+      renum[static_cast<std::size_t>(get(vim, v))] = next++;
+      const auto& p = get(vpm, v);
+      for (int d = 0; d < 3; ++d) raw.xyz.push_back(coordinate(p, d));
+    }
+    raw.starts.reserve(faces(pmesh).size() + 1);
+    raw.indices.reserve(3 * faces(pmesh).size());
+    for (auto f : faces(pmesh)) {
+      for (auto v : CGAL::vertices_around_face(halfedge(f, pmesh), pmesh))
+        raw.indices.push_back(renum[static_cast<std::size_t>(get(vim, v))]);
+      raw.starts.push_back(raw.indices.size());
+    }
+  } catch (const std::bad_alloc&) {
+    r.status = Status::io_error;
+    r.message = path + ": out of memory";
+    return false;
+  }
+  return true;
+}
+
+/// builds `pmesh` (empty on entry) from a checked soup when it is a manifold,
+/// consistently oriented polygon mesh; else `r` says why and `pmesh` stays empty.
+template <class PolygonMesh, class VertexPointMap>
+void raw_to_mesh(const std::string& path, const Raw_soup& raw, PolygonMesh& pmesh,
+                 const VertexPointMap& vpm, Io_result& r)
+{
+  using Point = typename boost::property_traits<VertexPointMap>::value_type;
+  try {
+    // the same test as PMP::is_polygon_soup_a_polygon_mesh, on flat arrays
+    Soup_topology topology;
+    std::string why;
+    if (!topology.compute(raw.num_points(), raw.indices.data(), raw.starts.data(),
+                          raw.num_polygons(), why)) {
+      r.status = Status::non_manifold_input;
+      r.message = path + ": not a manifold, consistently oriented polygon mesh (" + why +
+                  "); run `mrepair soup` first";
+      return;
+    }
+    build_mesh(topology, raw.num_points(), raw.indices.data(), raw.starts.data(),
+               raw.num_polygons(), pmesh, [&](auto v, std::size_t i) {
+                 const double* q = &raw.xyz[3 * i];
+                 put(vpm, v, Point(q[0], q[1], q[2]));
+               });
+    const std::size_t isolated = r.points - static_cast<std::size_t>(vertices(pmesh).size());
+    if (isolated)
+      r.message += (r.message.empty() ? path + ": " : std::string("; ")) +
+                   std::to_string(isolated) +
+                   " point(s) used by no polygon were not added to the mesh";
+  } catch (const std::bad_alloc&) {
+    CGAL::clear(pmesh);
+    r.status = Status::io_error;
+    r.message = path + ": out of memory building the mesh";
+  }
+}
+
+/// true when `polygons` over `num_points` points form a manifold, consistently
+/// oriented polygon mesh; `why` receives the reason when not.
+template <class PolygonRange>
+bool is_soup_a_mesh(const PolygonRange& polygons, std::size_t num_points, std::string& why)
+{
+  std::vector<std::int64_t> indices;
+  std::vector<std::size_t> starts{0};
+  starts.reserve(polygons.size() + 1);
+  for (const auto& poly : polygons) {
+    for (const auto& i : poly) {
+      // a negative signed index or one that does not fit stays out of range
+      const std::int64_t v = static_cast<std::int64_t>(i);
+      indices.push_back(v < 0 || static_cast<std::uint64_t>(i) >= num_points ? -1 : v);
+    }
+    starts.push_back(indices.size());
+  }
+  Soup_topology topology;
+  return topology.compute(num_points, indices.data(), starts.data(), polygons.size(), why);
+}
+
+} // namespace io
+} // namespace internal
+} // namespace mrepair
+
+#endif // MREPAIR_INTERNAL_IO_CONVERT_H
