@@ -24,7 +24,9 @@
 //              nested at odd depth (ray parity)
 //   build      halfedges written directly from the partner table
 
-#include <mrepair/internal/stitch_soup/result.h>
+#include <mrepair/internal/point_grid.h>
+#include <mrepair/internal/utility.h>
+#include <mrepair/stitch_soup_result.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Bbox_3.h>
@@ -52,32 +54,6 @@ namespace mrepair {
 namespace internal {
 
 using Soup_index = std::uint32_t;
-
-// Union-find whose root is the smallest index of its class (deterministic representatives).
-class Soup_union_find
-{
-  std::vector<Soup_index> parent_;
-
-public:
-  explicit Soup_union_find(std::size_t n = 0) : parent_(n) { std::iota(parent_.begin(), parent_.end(), Soup_index(0)); }
-  Soup_index find(Soup_index x)
-  {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
-  bool unite(Soup_index a, Soup_index b)
-  {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    if (b < a) std::swap(a, b);
-    parent_[b] = a;
-    return true;
-  }
-};
 
 template <typename I>
 bool soup_index_is_valid(const I& id, std::size_t n)
@@ -130,17 +106,7 @@ public:
   static Idx dst_corner(Idx s) { return 3 * (s / 3) + (s % 3 + 1) % 3; }
   Idx src(Idx s) const { return T[s / 3][s % 3]; }
   Idx dst(Idx s) const { return T[s / 3][(s % 3 + 1) % 3]; }
-  static Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-  static double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-  static Vec cross(const Vec& a, const Vec& b)
-  {
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  }
-  static double dist2(const Vec& a, const Vec& b)
-  {
-    Vec d = sub(a, b);
-    return dot(d, d);
-  }
+  static double dist2(const Vec& a, const Vec& b) { return squared_norm(sub(a, b)); }
   static std::uint64_t edge_key(Idx a, Idx b)
   {
     if (b < a) std::swap(a, b);
@@ -267,7 +233,7 @@ public:
       std::vector<Idx> reps;
       for (std::size_t i = 0; i < order.size(); ++i)
         if (rep[order[i]] == order[i]) reps.push_back(order[i]);
-      Soup_union_find uf(n);
+      Union_find<Idx> uf(n);
       near_pairs(reps, opt.merge_epsilon, [&](Idx a, Idx b) { uf.unite(a, b); });
       for (Idx i : order) rep[i] = uf.find(rep[i]);
     }
@@ -291,54 +257,14 @@ public:
   template <class F>
   void near_pairs(const std::vector<Idx>& ids, double eps, F f)
   {
-    struct Cell_entry
-    {
-      std::array<std::int64_t, 3> c;
-      Idx id;
-    };
-    const double cell = cell_size(eps);
-    auto cell_of = [cell](const Vec& p) {
-      std::array<std::int64_t, 3> c;
-      for (int k = 0; k < 3; ++k) c[k] = static_cast<std::int64_t>(std::floor(p[k] / cell));
-      return c;
-    };
-    std::vector<Cell_entry> cells(ids.size());
-    for (std::size_t i = 0; i < ids.size(); ++i) cells[i] = {cell_of(P[ids[i]]), ids[i]};
-    std::sort(cells.begin(), cells.end(),
-              [](const Cell_entry& a, const Cell_entry& b) { return a.c < b.c || (a.c == b.c && a.id < b.id); });
-    struct Hash
-    {
-      std::size_t operator()(const std::array<std::int64_t, 3>& c) const
-      {
-        std::uint64_t h = std::uint64_t(c[0]) * 0x9E3779B97F4A7C15ull;
-        h ^= std::uint64_t(c[1]) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
-        h ^= std::uint64_t(c[2]) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
-        return std::size_t(h);
-      }
-    };
-    std::unordered_map<std::array<std::int64_t, 3>, std::pair<std::size_t, std::size_t>, Hash> range;
-    range.reserve(cells.size());
-    for (std::size_t i = 0; i < cells.size();) {
-      std::size_t j = i;
-      while (j < cells.size() && cells[j].c == cells[i].c) ++j;
-      range.emplace(cells[i].c, std::make_pair(i, j));
-      i = j;
-    }
+    const Point_grid<Idx> grid(cell_size(eps), ids, [&](Idx i) -> const Vec& { return P[i]; });
     const double eps2 = eps * eps;
-    for (std::size_t i = 0; i < cells.size(); ++i) {
-      const auto& c = cells[i].c;
-      const Idx a = cells[i].id;
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dz = -1; dz <= 1; ++dz) {
-            auto it = range.find({c[0] + dx, c[1] + dy, c[2] + dz});
-            if (it == range.end()) continue;
-            for (std::size_t j = it->second.first; j < it->second.second; ++j) {
-              const Idx b = cells[j].id;
-              if (b <= a) continue;  // each pair once
-              if (dist2(P[a], P[b]) <= eps2) f(a, b);
-            }
-          }
+    for (const auto& e : grid.entries()) {
+      const Idx a = e.id;
+      grid.for_each_near(e.c, [&](Idx b) {
+        if (b <= a) return;  // each pair once
+        if (dist2(P[a], P[b]) <= eps2) f(a, b);
+      });
     }
   }
 
@@ -599,7 +525,6 @@ public:
     double l1 = std::sqrt(dot(e1, e1));
     for (double& x : e1) x /= l1;
     Vec e2 = cross(d, e1);
-    const double two_pi = 2 * 3.14159265358979323846;
     std::vector<double> ang(k);
     std::vector<int> dir(k);
     for (std::size_t i = 0; i < k; ++i) {
@@ -750,7 +675,7 @@ public:
     const std::size_t F = T.size();
     const std::size_t S = 3 * F;
     for (;;) {  // ends: every further round removes at least one partner
-      Soup_union_find uf(S);
+      Union_find<Idx> uf(S);
       for (std::size_t s = 0; s < S; ++s) {
         const Idx p = partner[s];
         if (p == none || p < s) continue;
@@ -832,25 +757,7 @@ public:
     if (bnd.size() < 2) return false;
 
     // grid over the source points of boundary sides
-    struct Entry
-    {
-      std::array<std::int64_t, 3> c;
-      Idx slot;
-    };
-    const double cell = cell_size(eps);
-    auto cell_of = [cell](const Vec& p) {
-      std::array<std::int64_t, 3> c;
-      for (int k = 0; k < 3; ++k) c[k] = static_cast<std::int64_t>(std::floor(p[k] / cell));
-      return c;
-    };
-    std::vector<Entry> cells(bnd.size());
-    for (std::size_t i = 0; i < bnd.size(); ++i) cells[i] = {cell_of(P[src(bnd[i])]), bnd[i]};
-    std::sort(cells.begin(), cells.end(),
-              [](const Entry& a, const Entry& b) { return a.c < b.c || (a.c == b.c && a.slot < b.slot); });
-    auto lower = [&](const std::array<std::int64_t, 3>& c) {
-      return std::lower_bound(cells.begin(), cells.end(), c,
-                              [](const Entry& e, const std::array<std::int64_t, 3>& x) { return e.c < x; });
-    };
+    const Point_grid<Idx> grid(cell_size(eps), bnd, [&](Idx slot) -> const Vec& { return P[src(slot)]; });
     struct Cand
     {
       double score;
@@ -860,21 +767,14 @@ public:
     std::vector<Cand> cand;
     const double eps2 = eps * eps;
     auto scan = [&](Idx s, const Vec& near_src, const Vec& near_dst, bool same) {
-      auto c = cell_of(near_src);
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dz = -1; dz <= 1; ++dz) {
-            std::array<std::int64_t, 3> cc{c[0] + dx, c[1] + dy, c[2] + dz};
-            for (auto it = lower(cc); it != cells.end() && it->c == cc; ++it) {
-              const Idx h = it->slot;
-              if (h <= s || h / 3 == s / 3) continue;  // each pair once, never within a face
-              const double d1 = dist2(P[src(h)], near_src), d2 = dist2(P[dst(h)], near_dst);
-              if (d1 > eps2 || d2 > eps2) continue;
-              // an edge that was cut on purpose (fin, Moebius, multi-edge) stays cut
-              if (edge_key(src(h), dst(h)) == edge_key(src(s), dst(s))) continue;
-              cand.push_back({std::max(d1, d2), s, h, same});
-            }
-          }
+      grid.for_each_near(near_src, [&](Idx h) {
+        if (h <= s || h / 3 == s / 3) return;  // each pair once, never within a face
+        const double d1 = dist2(P[src(h)], near_src), d2 = dist2(P[dst(h)], near_dst);
+        if (d1 > eps2 || d2 > eps2) return;
+        // an edge that was cut on purpose (fin, Moebius, multi-edge) stays cut
+        if (edge_key(src(h), dst(h)) == edge_key(src(s), dst(s))) return;
+        cand.push_back({std::max(d1, d2), s, h, same});
+      });
     };
     for (Idx s : bnd) {
       scan(s, P[dst(s)], P[src(s)], false);  // opposite direction: glues as is
@@ -963,7 +863,7 @@ public:
     std::vector<Idx> lroot(verts.size());
     auto root_of = [&](Idx v) { return local[v] == none ? none - 1 - v : lroot[local[v]]; };  // unmerged: itself
     for (int round = 0;; ++round) {
-      Soup_union_find uf(verts.size());
+      Union_find<Idx> uf(verts.size());
       for (std::size_t i = 0; i < merges.size(); ++i)
         if (live[i]) {
           uf.unite(local[merges[i][0]], local[merges[i][1]]);

@@ -1,6 +1,9 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
-#ifndef MREPAIR_INTERNAL_STITCH_SOUP_RESULT_H
-#define MREPAIR_INTERNAL_STITCH_SOUP_RESULT_H
+#ifndef MREPAIR_STITCH_SOUP_RESULT_H
+#define MREPAIR_STITCH_SOUP_RESULT_H
+
+/// \file stitch_soup_result.h
+/// What the polygon-soup repairs of `stitch_soup.h` report.
 
 #include <mrepair/report.h>
 #include <mrepair/status.h>
@@ -96,4 +99,4 @@ struct Soup_repair_result
 
 } // namespace mrepair
 
-#endif // MREPAIR_INTERNAL_STITCH_SOUP_RESULT_H
+#endif // MREPAIR_STITCH_SOUP_RESULT_H
