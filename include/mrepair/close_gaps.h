@@ -10,13 +10,13 @@
 /// `close_gaps()` runs it once; `Gap_closing_sequence` steps forward and
 /// backward through the contractions.
 
-#include <mrepair/internal/close_gaps/gap_closing_sequence.h>
+#include <mrepair/gap_closing_result.h>
+#include <mrepair/gap_closing_sequence.h>
+#include <mrepair/internal/close_gaps/run.h>
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
 #include <mrepair/status.h>
 #include <mrepair/visitors.h>
-
-#include <CGAL/Polygon_mesh_processing/manifoldness.h>
 
 #include <limits>
 #include <memory>
@@ -66,7 +66,6 @@ Gap_closing_result close_gaps(TriangleMesh& tm, double tolerance,
   const std::size_t max_ops = internal::get_or(np, internal_np::gap_max_operations,
                                                std::numeric_limits<std::size_t>::max());
   const bool split = internal::get_or(np, internal_np::gap_split_pinched_vertices, true);
-  bool cancelled = false;
 
   std::unique_ptr<Gap_closing_sequence<TriangleMesh, VPM>> seq;
   {
@@ -74,35 +73,13 @@ Gap_closing_result close_gaps(TriangleMesh& tm, double tolerance,
     seq.reset(new Gap_closing_sequence<TriangleMesh, VPM>(tm, tolerance, np));
   }
   if (seq->status() != Status::ok) return seq->result();
-  {
-    internal::Phase_scope<decltype(visitor)> phase(visitor, "closing");
-    const double limit = seq->max_distance();
-    std::size_t n = 0;
-    // polled before the first contraction too: small meshes never reach 256
-    cancelled = visitor.stop_requested();
-    while (!cancelled && n < max_ops && seq->step(limit)) {
-      ++n;
-      if ((n & 255) == 0) {
-        if (visitor.stop_requested()) {
-          cancelled = true;
-          break;
-        }
-        visitor.progress(limit > 0 ? std::min(1.0, seq->current_distance() / limit) : 1.0);
-      }
-    }
-  }
+  const bool cancelled = internal::step_to_limit(*seq, visitor, max_ops);
   Gap_closing_result r = seq->result();
   if (split && r.pinched_vertices > 0 && r.status == Status::ok) {
-    internal::Phase_scope<decltype(visitor)> phase(visitor, "manifold");
-    r.pinched_vertices_split = CGAL::Polygon_mesh_processing::duplicate_non_manifold_vertices(
-        tm, CGAL::parameters::vertex_point_map(
-                CGAL::parameters::choose_parameter(
-                    CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
-                    get_property_map(CGAL::vertex_point, tm))));
-    r.pinched_vertices = 0;
-    auto counts = internal::count_boundary(tm);
-    r.boundary_edges_after = counts.first;
-    r.boundary_loops_after = counts.second;
+    VPM vpm = CGAL::parameters::choose_parameter(
+        CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+        get_property_map(CGAL::vertex_point, tm));
+    internal::split_pinched_vertices(tm, vpm, visitor, r);
   }
   if (cancelled) r.status = Status::cancelled;
   return r;

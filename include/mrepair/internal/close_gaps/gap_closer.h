@@ -1,10 +1,10 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
-#ifndef MREPAIR_INTERNAL_CLOSE_GAPS_GAP_CLOSING_SEQUENCE_H
-#define MREPAIR_INTERNAL_CLOSE_GAPS_GAP_CLOSING_SEQUENCE_H
+#ifndef MREPAIR_INTERNAL_CLOSE_GAPS_GAP_CLOSER_H
+#define MREPAIR_INTERNAL_CLOSE_GAPS_GAP_CLOSER_H
 
+#include <mrepair/gap_closing_result.h>
 #include <mrepair/internal/close_gaps/boundary_grid.h>
-#include <mrepair/parameters.h>
-#include <mrepair/report.h>
+#include <mrepair/internal/utility.h>
 #include <mrepair/status.h>
 
 #include <CGAL/boost/graph/Euler_operations.h>
@@ -28,73 +28,15 @@
 
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 #endif
 
-// Algorithm-specific named parameters (see close_gaps.h for their meaning).
-MREPAIR_ADD_NAMED_PARAMETER(gap_lambda)                 // in [0,1], merged position λv+(1-λ)v'
-MREPAIR_ADD_NAMED_PARAMETER(gap_snap_distance)          // absolute snap distance to edge endpoints
-MREPAIR_ADD_NAMED_PARAMETER(gap_relative_tolerance)     // bool: tolerance x bbox diagonal
-MREPAIR_ADD_NAMED_PARAMETER(gap_vertex_selection)       // vertex property map of bool (region)
-MREPAIR_ADD_NAMED_PARAMETER(gap_face_selection)         // face property map of bool (region)
-MREPAIR_ADD_NAMED_PARAMETER(gap_split_pinched_vertices) // bool: close_gaps makes the output manifold
-MREPAIR_ADD_NAMED_PARAMETER(gap_max_operations)         // std::size_t cap on contractions
-
 namespace mrepair {
 
-/// \ingroup mrepair_gaps
-/// what `close_gaps()` or a `Gap_closing_sequence` did.
-struct Gap_closing_result
-{
-  Status status = Status::ok;
-  std::string message;
-  double tolerance = 0;                      ///< absolute distance limit used
-  std::size_t operations = 0;                ///< contractions applied (net, at the current position)
-  std::size_t vertex_vertex = 0;             ///< of which vertex-vertex contractions
-  std::size_t vertex_edge = 0;               ///< of which vertex-edge contractions
-  std::size_t rejected_flip = 0;             ///< pairs skipped: a face would flip
-  std::size_t rejected_degenerate = 0;       ///< pairs skipped: a face would get zero area
-  std::size_t rejected_non_manifold = 0;     ///< pairs skipped: an edge with >2 faces / broken fan
-  std::size_t rejected_failed = 0;           ///< pairs skipped: the halfedge update failed (rolled back)
-  std::size_t rejected_displacement = 0;     ///< pairs skipped: a vertex would move farther than the tolerance
-  std::size_t boundary_edges_before = 0;
-  std::size_t boundary_edges_after = 0;
-  std::size_t boundary_loops_before = 0;
-  std::size_t boundary_loops_after = 0;
-  std::size_t pinched_vertices = 0;          ///< boundary vertices with several fans (left in the mesh)
-  std::size_t pinched_vertices_split = 0;    ///< vertices created by splitting pinched vertices
-  double max_displacement = 0;               ///< largest distance a vertex moved from its input position
-  double final_distance = 0;                 ///< error level of the last applied contraction
-
-  void to_report(Report& r) const
-  {
-    r.add("status", to_string(status));
-    if (!message.empty()) r.add("message", message);
-    r.add("tolerance", tolerance);
-    r.add("operations", operations);
-    r.add("vertex_vertex", vertex_vertex);
-    r.add("vertex_edge", vertex_edge);
-    Report& rj = r.section("rejected");
-    rj.add("flip", rejected_flip);
-    rj.add("degenerate", rejected_degenerate);
-    rj.add("non_manifold", rejected_non_manifold);
-    rj.add("failed", rejected_failed);
-    rj.add("displacement", rejected_displacement);
-    r.add("boundary_edges_before", boundary_edges_before);
-    r.add("boundary_edges_after", boundary_edges_after);
-    r.add("boundary_loops_before", boundary_loops_before);
-    r.add("boundary_loops_after", boundary_loops_after);
-    r.add("pinched_vertices", pinched_vertices);
-    r.add("pinched_vertices_split", pinched_vertices_split);
-    r.add("max_displacement", max_displacement);
-    r.add("final_distance", final_distance);
-  }
-};
-
 namespace internal {
-template <class T> struct Gap_is_surface_mesh : std::false_type {};
-template <class P> struct Gap_is_surface_mesh<CGAL::Surface_mesh<P>> : std::true_type {};
+
+/// the region of `Gap_closer::start` that is the whole mesh.
+struct Gap_whole_mesh {};
 
 // border halfedge count and border cycle count of a halfedge graph.
 template <class Mesh>
@@ -116,45 +58,12 @@ std::pair<std::size_t, std::size_t> count_boundary(const Mesh& m)
   }
   return {edges, loops};
 }
-} // namespace internal
 
-/// \ingroup mrepair_gaps
-/// the progressive gap closing of Borodin, Novotni and Klein as an object that
-/// steps forward (contracting the nearest boundary vertex-vertex or
-/// vertex-edge pair) and backward (undoing contractions) on a triangle mesh
-/// with boundaries.
-///
-/// \code
-///   pairs  <- for each boundary vertex v: nearest boundary edge e not incident to v (grid)
-///             vertex-edge pair if the projection falls inside e (further than the snap
-///             distance from its ends), else vertex-vertex with the nearer end
-///   queue  <- pairs by distance
-///   forward: pop nearest; check fans, flips, zero areas; contract (v moves to λv+(1-λ)v');
-///            record removed/added faces and old positions; recompute the pairs of the
-///            vertices projected on every boundary edge that changed
-///   backward: replay the record in reverse (re-add the removed vertex, swap faces, restore positions)
-/// \endcode
-///
-/// Contractions are recorded as face edits (faces removed, faces added, at most
-/// one removed vertex, old and new positions), so "exactly" means: after
-/// backward steps the mesh has the same vertex set with bit-identical
-/// positions and the same set of faces as vertex triples (same orientation).
-/// On `Surface_mesh` the vertex indices are identical too (the vertex free list
-/// is last-in first-out); face and halfedge indices may be permuted.
-/// Vertex descriptors are stable on both types except for vertices that a
-/// contraction removed and its undo re-created (a new descriptor on `Polyhedron_3`).
-///
-/// Two patches first meet at a single vertex (a "pinched" vertex with two
-/// fans, valid as a halfedge graph); their boundary edges then coincide and are
-/// glued by the next contractions. Pinched vertices that remain can be split
-/// with `CGAL::Polygon_mesh_processing::duplicate_non_manifold_vertices()`
-/// (`close_gaps()` does so by default).
-///
-/// The mesh must not be modified by others while the sequence is in use.
-template <class TriangleMesh,
-          class VertexPointMap =
-              typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::type>
-class Gap_closing_sequence
+// The worker of `Gap_closing_sequence` (see gap_closing_sequence.h for the
+// algorithm and what "exactly" means for backward steps): pairs, queue,
+// contractions recorded as face edits, undo and redo.
+template <class TriangleMesh, class VertexPointMap>
+class Gap_closer
 {
   using GT = boost::graph_traits<TriangleMesh>;
   using vertex_descriptor = typename GT::vertex_descriptor;
@@ -163,7 +72,7 @@ class Gap_closing_sequence
   using Point = typename boost::property_traits<VertexPointMap>::value_type;
   using Id = std::uint32_t;
   using Tri = std::array<Id, 3>;
-  using P3 = std::array<double, 3>;
+  using P3 = Vec3;
   using Id_map = typename boost::property_map<TriangleMesh,
                                               CGAL::dynamic_vertex_property_t<std::uint32_t>>::type;
   static constexpr Id npos = Id(-1);
@@ -201,48 +110,34 @@ class Gap_closing_sequence
   };
 
 public:
-  /// prepares the pairs of `tm` for closing gaps up to `max_distance`.
-  /// \param np optional: `vertex_point_map` (of type `VertexPointMap`),
-  ///   `mrepair::parameters::gap_relative_tolerance(bool)` (false: `max_distance` is
-  ///   absolute; true: a fraction of the bounding-box diagonal),
-  ///   `gap_lambda(double)` (0.5), `gap_snap_distance(double)` (`max_distance`; a
-  ///   projection closer than min(snap, edge length / 3) to an edge end snaps to it),
-  ///   `gap_vertex_selection(map)` / `gap_face_selection(map)` (bool property maps:
-  ///   only boundary vertices of the region, and edges with both ends in it, are paired;
-  ///   a vertex is in a face region when one of its faces is selected; default all).
-  /// \pre `CGAL::is_valid_polygon_mesh(tm)` (checked in debug builds only: the check costs
-  ///   more than the closing). Bad data (no face, NaN/infinite coordinate, a non-triangle face,
-  ///   bad parameters) sets `status()` and makes every step a no-op.
-  template <class NamedParameters = CGAL::parameters::Default_named_parameters>
-  Gap_closing_sequence(TriangleMesh& tm, double max_distance,
-                       const NamedParameters& np = CGAL::parameters::default_values())
-    : tm_(tm),
-      vpm_(CGAL::parameters::choose_parameter(
-          CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
-          get_property_map(CGAL::vertex_point, tm))),
-      idmap_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm))
-  {
-    namespace inp = mrepair::internal_np;
-    lambda_ = internal::get_or(np, inp::gap_lambda, 0.5);
-    bool relative = internal::get_or(np, inp::gap_relative_tolerance, false);
-    double snap = internal::get_or(np, inp::gap_snap_distance, -1.0);
+  Gap_closer(TriangleMesh& tm, const VertexPointMap& vpm)
+    : tm_(tm), vpm_(vpm), idmap_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm))
+  {}
 
-    if (!std::isfinite(max_distance) || max_distance < 0 || !(lambda_ >= 0 && lambda_ <= 1) ||
-        !std::isfinite(snap)) {
-      status_ = Status::invalid_parameter;
-      message_ = "tolerance must be finite and >= 0, gap_lambda in [0,1]";
-      return;
-    }
+  /// refuses the input: every step is a no-op.
+  void refuse(Status status, const std::string& message)
+  {
+    status_ = status;
+    message_ = message;
+  }
+
+  /// checks the mesh and prepares the pairs for closing gaps up to
+  /// `max_distance` (the parameters are checked by the caller). `region` is
+  /// `Gap_whole_mesh` or tells whether a vertex (of the input boundary) is in
+  /// the region: `region(v, tm)`.
+  template <class Region>
+  void start(double max_distance, double lambda, bool relative, double snap, const Region& region)
+  {
+    TriangleMesh& tm = tm_;
+    lambda_ = lambda;
     if (faces(tm).first == faces(tm).second) {
-      status_ = Status::empty_input;
-      message_ = "the mesh has no faces";
+      refuse(Status::empty_input, "the mesh has no faces");
       return;
     }
     // bounding box and finiteness of every vertex (a NaN anywhere is bad input)
     std::array<double, 6> box;
     if (!bounding_box(box)) {
-      status_ = Status::non_finite_input;
-      message_ = "a vertex coordinate is NaN or infinite";
+      refuse(Status::non_finite_input, "a vertex coordinate is NaN or infinite");
       return;
     }
     const double* lo = box.data();
@@ -257,15 +152,13 @@ public:
     const bool valid = true;
 #endif
     if (!valid || nh - border.size() != 3 * std::size_t(num_faces(tm))) {
-      status_ = Status::invalid_mesh;
-      message_ = "the input is not a valid triangle mesh";
+      refuse(Status::invalid_mesh, "the input is not a valid triangle mesh");
       return;
     }
     double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                             (hi[2] - lo[2]) * (hi[2] - lo[2]));
-    if (!(diag <= 1e100)) {  // products of up to three coordinate differences must stay finite
-      status_ = Status::non_finite_input;
-      message_ = "coordinates too large: bounding-box diagonal above 1e100";
+    if (!(diag <= max_bbox_diagonal)) {
+      refuse(Status::non_finite_input, coordinates_too_large_message);
       return;
     }
     max_dist_ = relative ? max_distance * diag : max_distance;
@@ -287,7 +180,7 @@ public:
 
     // region
     selected_.assign(vd_.size(), 1);
-    select_region(np);
+    select_region(region);
 
     double mean = edges.empty() ? 0 : total / edges.size();
     double cell = std::max({max_dist_, mean, diag * 1e-6, 1e-300});
@@ -400,19 +293,13 @@ private:
   static std::uint64_t key(Id a, Id b) { return (std::uint64_t(a) << 32) | b; }
   static Id ka(std::uint64_t k) { return Id(k >> 32); }
   static Id kb(std::uint64_t k) { return Id(k & 0xffffffffu); }
-  static double sqdist(const P3& a, const P3& b)
-  {
-    return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
-  }
-  static P3 p3(const Point& p)
-  {
-    return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
-  }
+  static double sqdist(const P3& a, const P3& b) { return squared_norm(sub(a, b)); }
+  static P3 p3(const Point& p) { return to_vec3(p); }
   P3 pos(Id i) const { return p3(get(vpm_, vd_[i])); }
 
   // Surface_mesh: indices are dense, so the O(n) scans below run over index
   // ranges in parallel; other graphs are scanned through their iterators.
-  static constexpr bool indexed = internal::Gap_is_surface_mesh<TriangleMesh>::value;
+  static constexpr bool indexed = Is_surface_mesh<TriangleMesh>::value;
 
   // bounding box of all vertices as {lo, hi}; false when a coordinate is not finite.
   bool bounding_box(std::array<double, 6>& box) const
@@ -523,21 +410,11 @@ private:
     return i;
   }
 
-  template <class NP>
-  void select_region(const NP& np)
+  template <class Region>
+  void select_region(const Region& region)
   {
-    namespace inp = mrepair::internal_np;
-    if constexpr (!CGAL::parameters::is_default_parameter<NP, inp::gap_vertex_selection_t>::value) {
-      auto m = CGAL::parameters::get_parameter(np, inp::gap_vertex_selection);
-      for (Id i = 0; i < vd_.size(); ++i) selected_[i] = get(m, vd_[i]) ? 1 : 0;
-    } else if constexpr (!CGAL::parameters::is_default_parameter<NP, inp::gap_face_selection_t>::value) {
-      auto m = CGAL::parameters::get_parameter(np, inp::gap_face_selection);
-      for (Id i = 0; i < vd_.size(); ++i) {
-        selected_[i] = 0;
-        for (halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(vd_[i], tm_), tm_))
-          if (!is_border(h, tm_) && get(m, face(h, tm_))) selected_[i] = 1;
-      }
-    }
+    if constexpr (!std::is_same<Region, Gap_whole_mesh>::value)
+      for (Id i = 0; i < vd_.size(); ++i) selected_[i] = region(vd_[i], tm_) ? 1 : 0;
   }
 
   // halfedge from u to v, generic (Polyhedron's edge(u,v) has no orientation).
@@ -615,7 +492,7 @@ private:
     std::uint64_t best_e = 0;
     // distances on the registered copies; only a candidate that beats the best
     // is checked against the mesh (alive, same geometry, still a border edge)
-    grid_.query(p, max_dist_, [&](const internal::Segment_grid::Item& it) {
+    grid_.query(p, max_dist_, [&](const Segment_grid::Item& it) {
       const std::uint64_t e = it.key;
       Id a = ka(e), b = kb(e);
       if (a == u || b == u) return;
@@ -694,14 +571,9 @@ private:
       ver_[u] = 1;
       if (selected_[u]) pair_[u] = find_pair(u, pos(u));
     };
-#ifdef CGAL_LINKED_WITH_TBB
     if (nb >= 2048)
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 256),
-                        [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i != r.end(); ++i) run(i);
-                        });
+      parallel_for_index(nb, 256, run);
     else
-#endif
       for (std::size_t i = 0; i < nb; ++i) run(i);
     std::vector<Entry> entries;
     entries.reserve(nb);
@@ -798,12 +670,7 @@ private:
     return k == 0 && len == n && n >= 3;
   }
 
-  static P3 normal(const P3& a, const P3& b, const P3& c)
-  {
-    P3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  }
-  static double dot(const P3& a, const P3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+  static P3 normal(const P3& a, const P3& b, const P3& c) { return cross(sub(b, a), sub(c, a)); }
 
   // geometry of one face before (ref, old positions) and after (t, new positions).
   Outcome check_face(const Tri& t, const Tri& ref, Id moved, const P3& to) const
@@ -953,7 +820,7 @@ private:
     vgrid_.insert(moved, pos(moved), pos(moved));
     for (std::uint64_t e : after_) {
       P3 pa = pos(ka(e)), pb = pos(kb(e));
-      vgrid_.query_box(pa, pb, max_dist_, [&](const internal::Segment_grid::Item& it) {
+      vgrid_.query_box(pa, pb, max_dist_, [&](const Segment_grid::Item& it) {
         Id v = Id(it.key);
         if (v == ka(e) || v == kb(e)) return;
         double t = 0, d = seg_dist(it.a, pa, pb, t);  // a stale copy only costs a recompute
@@ -1100,8 +967,8 @@ private:
   std::vector<std::uint32_t> ver_;
   std::vector<Point> orig_;
 
-  internal::Segment_grid grid_;   // boundary edges (keys: edge keys)
-  internal::Segment_grid vgrid_;  // boundary vertices (keys: ids)
+  Segment_grid grid_;   // boundary edges (keys: edge keys)
+  Segment_grid vgrid_;  // boundary vertices (keys: ids)
   std::vector<Id> head_, next_, prev_, owner_;  // vertices by the source of their paired edge
   std::priority_queue<Entry> queue_;
   std::vector<Op> ops_;
@@ -1118,6 +985,7 @@ private:
   std::vector<std::pair<Id, Id>> link_;
 };
 
+} // namespace internal
 } // namespace mrepair
 
-#endif // MREPAIR_INTERNAL_CLOSE_GAPS_GAP_CLOSING_SEQUENCE_H
+#endif // MREPAIR_INTERNAL_CLOSE_GAPS_GAP_CLOSER_H
