@@ -3,6 +3,7 @@
 #define MREPAIR_INPUT_PROFILE_H
 
 #include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+#include <mrepair/internal/utility.h>
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
 
@@ -124,34 +125,34 @@ Input_classification classify_input(const TriangleMesh& tm,
   c.faces = static_cast<std::size_t>(faces(tm).size());
   double sum = 0, sum2 = 0;
   std::size_t n_edges = 0, interior = 0, coplanar = 0, triangles = 0, skinny = 0;
-  const double cos_coplanar = std::cos(0.01 * 3.14159265358979323846 / 180.);
-  const double sin5 = std::sin(5. * 3.14159265358979323846 / 180.);
+  const double cos_coplanar = std::cos(0.01 * internal::pi / 180.);
+  const double sin5 = std::sin(5. * internal::pi / 180.);
   for (auto e : edges(tm)) {
     const auto h = halfedge(e, tm);
-    const SC::Vec3 a = SC::point(vpm, source(h, tm)), b = SC::point(vpm, target(h, tm));
-    const double l = SC::norm(SC::sub(a, b));
+    const internal::Vec3 a = internal::point(vpm, source(h, tm)), b = internal::point(vpm, target(h, tm));
+    const double l = internal::norm(internal::sub(a, b));
     if (!std::isfinite(l)) continue;
     sum += l;
     sum2 += l * l;
     ++n_edges;
     if (is_border_edge(h, tm)) continue;
     ++interior;
-    const SC::Vec3 n1 = SC::face_normal(h, tm, vpm), n2 = SC::face_normal(opposite(h, tm), tm, vpm);
-    const double l1 = SC::norm(n1), l2 = SC::norm(n2);
-    if (l1 > 0. && l2 > 0. && SC::dot(n1, n2) >= cos_coplanar * l1 * l2) ++coplanar;
+    const internal::Vec3 n1 = SC::face_normal(h, tm, vpm), n2 = SC::face_normal(opposite(h, tm), tm, vpm);
+    const double l1 = internal::norm(n1), l2 = internal::norm(n2);
+    if (l1 > 0. && l2 > 0. && internal::dot(n1, n2) >= cos_coplanar * l1 * l2) ++coplanar;
   }
   for (auto f : faces(tm)) {
-    SC::Vec3 p[3];
+    internal::Vec3 p[3];
     int k = 0;
     for (auto v : CGAL::vertices_around_face(halfedge(f, tm), tm)) {
-      if (k < 3) p[k] = SC::point(vpm, v);
+      if (k < 3) p[k] = internal::point(vpm, v);
       ++k;
     }
     if (k != 3) continue;
     ++triangles;
-    const double twice_area = SC::norm(SC::cross(SC::sub(p[1], p[0]), SC::sub(p[2], p[0])));
+    const double twice_area = internal::norm(internal::cross(internal::sub(p[1], p[0]), internal::sub(p[2], p[0])));
     double len[3];
-    for (int i = 0; i < 3; ++i) len[i] = SC::norm(SC::sub(p[(i + 1) % 3], p[i]));
+    for (int i = 0; i < 3; ++i) len[i] = internal::norm(internal::sub(p[(i + 1) % 3], p[i]));
     // sin of the angle at vertex i = 2 area / (product of its two edges):
     // under sin 5 degrees the angle is below 5 (a needle) or above 175 (a cap)
     bool thin = false;

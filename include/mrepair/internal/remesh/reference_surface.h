@@ -5,6 +5,8 @@
 #ifndef MREPAIR_INTERNAL_REMESH_REFERENCE_SURFACE_H
 #define MREPAIR_INTERNAL_REMESH_REFERENCE_SURFACE_H
 
+#include <mrepair/internal/utility.h>
+
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -290,7 +292,7 @@ public:
     for (std::size_t i = 0; i < n; ++i) {
       if (!(area[i] > 0)) continue;
       double H = len(lap[i]) / (4. * area[i]);  // |Delta p| / 2 with Delta p = lap / (2A)
-      double K = (2. * M_PI - angle[i]) / area[i];
+      double K = (two_pi - angle[i]) / area[i];
       kappa[i] = std::abs(H) + std::sqrt(std::max(H * H - K, 0.));
     }
     // smoothing passes over the interior one-ring (line points excluded):

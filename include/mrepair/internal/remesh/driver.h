@@ -1,0 +1,197 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_INTERNAL_REMESH_DRIVER_H
+#define MREPAIR_INTERNAL_REMESH_DRIVER_H
+
+// The driver of every remeshing call of adaptive_remesh.h, once the named
+// parameters are read and the input is checked: the part to remesh, the
+// feature edges, then the Remesher in the mode asked for (uniform, adaptive,
+// or face count with its corrections of the target length), and the write
+// back.
+
+#include <mrepair/internal/remesh/remesher.h>
+#include <mrepair/internal/utility.h>
+#include <mrepair/remeshing_result.h>
+#include <mrepair/status.h>
+
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/properties.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <string>
+
+namespace mrepair {
+namespace internal {
+
+enum class Remesh_mode { uniform, adaptive, face_count };
+
+template <typename P>
+void remesh_collect_garbage(CGAL::Surface_mesh<P>& m) { m.collect_garbage(); }
+template <typename M>
+void remesh_collect_garbage(M&) {}
+
+/// what the public calls read from their named parameters (see adaptive_remesh.h).
+struct Remesh_options
+{
+  int iterations = 10;
+  bool protect = false;      ///< protect_constraints
+  bool relax_lines = true;   ///< relax_constraints
+  bool project = true;       ///< do_project
+  double density = 1.;       ///< remesh_density_factor
+  double gamma = 1.;         ///< remesh_gamma
+  double feature_angle = 44.;  ///< degrees; <= 0 or >= 180: no detection
+  bool has_ecm = false;      ///< an edge_is_constrained_map was given
+  double min_edge_length = 0, max_edge_length = 0;  ///< adaptive mode
+};
+
+/// a result with the mode and the counts of the input filled in.
+template <typename TriangleMesh>
+Remeshing_result start_remeshing_result(const TriangleMesh& tm, Remesh_mode mode)
+{
+  Remeshing_result res;
+  res.mode = mode == Remesh_mode::uniform ? "uniform"
+             : mode == Remesh_mode::adaptive ? "adaptive" : "face_count";
+  res.faces_before = static_cast<std::size_t>(faces(tm).size());
+  res.faces_after = res.faces_before;
+  res.vertices_after = static_cast<std::size_t>(vertices(tm).size());
+  return res;
+}
+
+/// `res` refused with status `s` and message `m`.
+inline Remeshing_result refuse_remeshing(Remeshing_result res, Status s, const std::string& m)
+{
+  res.status = s;
+  res.message = m;
+  return res;
+}
+
+/// remeshes `tm` (or the faces of `part` when not null) on checked input;
+/// `diag` is the bounding-box diagonal, `value` the target of `mode`.
+template <bool parallel, typename TriangleMesh, typename FaceRange, typename VPM, typename ECM,
+          typename VCM, typename VisitorHandle>
+Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_mode mode,
+                               double value, const Remesh_options& o, VPM vpm, ECM ecm, VCM vcm,
+                               VisitorHandle& vis, Remeshing_result res)
+{
+  using GT = boost::graph_traits<TriangleMesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using edge_descriptor = typename GT::edge_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+  using remesh::Vec3;
+  auto fail = [&](Status s, const std::string& m) { return refuse_remeshing(res, s, m); };
+
+  // ---- part selection
+  auto in_part_map = get(CGAL::dynamic_face_property_t<char>(), tm);
+  const bool whole = part == nullptr;
+  if (!whole) {
+    for (face_descriptor f : faces(tm)) put(in_part_map, f, char(0));
+    std::size_t n = 0;
+    for (face_descriptor f : *part) { put(in_part_map, f, char(1)); ++n; }
+    if (n == 0) return fail(Status::empty_input, "the face range is empty");
+  }
+  auto in_part = [&](face_descriptor f) { return whole || get(in_part_map, f) != 0; };
+
+  // ---- features
+  const double cos_feature = o.feature_angle > 0 && o.feature_angle < 180
+                                 ? std::cos(o.feature_angle * pi / 180.) : 2.;
+  auto pt = [&](vertex_descriptor v) {
+    const auto& p = get(vpm, v);
+    return Vec3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+  };
+  auto fnormal = [&](typename GT::halfedge_descriptor h) {
+    Vec3 a = pt(source(h, tm)), b = pt(target(h, tm)), c = pt(target(next(h, tm), tm));
+    return remesh::cross(b - a, c - a);
+  };
+  auto is_feature = [&](edge_descriptor e) {
+    if (o.has_ecm && get(ecm, e)) return true;
+    if (cos_feature > 1.) return false;
+    auto h = halfedge(e, tm);
+    Vec3 n1 = fnormal(h), n2 = fnormal(opposite(h, tm));
+    double l = remesh::len(n1) * remesh::len(n2);
+    return l > 0 && remesh::dot(n1, n2) < cos_feature * l;
+  };
+  auto is_fixed = [&](vertex_descriptor v) { return bool(get(vcm, v)); };
+
+  Status st = Status::ok;
+  {
+    remesh::Remesher<TriangleMesh, VPM, parallel> R(tm, vpm);
+    R.set_relax_lines(o.relax_lines);
+    vis.start_phase("setup");
+    R.setup(in_part, is_feature, is_fixed, o.protect,
+            cos_feature <= 1. ? cos_feature : std::cos(44. * pi / 180.));
+    vis.end_phase("setup");
+    res.feature_edges = R.feature_edges;
+    res.corners = R.corners;
+    if (mode == Remesh_mode::uniform) {
+      res.target_edge_length = value / o.density;
+      R.set_uniform(res.target_edge_length);
+      st = R.run(o.iterations, o.project, vis);
+    } else if (mode == Remesh_mode::adaptive) {
+      res.tolerance = value;
+      const double lmin = o.min_edge_length, lmax = o.max_edge_length;
+      if (!(lmin > 0) || !(lmax >= lmin) || !std::isfinite(lmax))
+        return fail(Status::invalid_parameter, "need 0 < remesh_min_edge_length <= remesh_max_edge_length");
+      R.set_adaptive(value, lmin / o.density, lmax / o.density, o.gamma);
+      const auto& s = R.reference().sizing;
+      res.min_target = s.empty() ? 0 : *std::min_element(s.begin(), s.end());
+      res.max_target = s.empty() ? 0 : *std::max_element(s.begin(), s.end());
+      st = R.run(o.iterations, o.project, vis);
+    } else {
+      // face count: L from the area (equilateral triangles), then corrected
+      double area = 0;
+      const auto& rf = R.reference();
+      for (const auto& t : rf.triangles)
+        area += 0.5 * remesh::len(remesh::cross(rf.points[t[1]] - rf.points[t[0]],
+                                                rf.points[t[2]] - rf.points[t[0]]));
+      const double N = value;
+      res.target_faces = static_cast<std::size_t>(N);
+      double L = std::sqrt(4. * area / (std::sqrt(3.) * N));
+      // a few very long, thin triangles have little area but would be split
+      // into edge length / L pieces (out of memory): keep the splits to ~100 N
+      double perimeters = 0;
+      for (const auto& t : rf.triangles)
+        for (int k = 0; k < 3; ++k)
+          perimeters += remesh::len(rf.points[t[(k + 1) % 3]] - rf.points[t[k]]);
+      L = std::max(L, perimeters / (200. * N));
+      const std::size_t outside = whole ? 0 : res.faces_before - rf.triangles.size();
+      // Surfaces far thinner than L in one direction (a stray far vertex) make
+      // splits and collapses undo each other without converging: a budget of
+      // ~100 operations per input and output face bounds the time.
+      R.set_operation_budget(100 * (rf.triangles.size() + static_cast<std::size_t>(N)));
+      R.set_uniform(L);
+      st = R.run(std::max(o.iterations, 1), o.project, vis);
+      for (int round = 0; round < 6 && st == Status::ok; ++round) {
+        double F = static_cast<double>(faces(tm).size() - outside);
+        if (std::abs(F - N) <= 0.04 * N) break;
+        L *= std::sqrt(F / N);
+        R.set_uniform(L);
+        st = R.run(3, o.project, vis);
+      }
+      res.target_edge_length = L;
+    }
+    if (st == Status::ok || st == Status::cancelled || st == Status::partial) R.write_back();
+    if (o.has_ecm)
+      for (edge_descriptor e : edges(tm)) put(ecm, e, R.is_feature(e));
+    res.iterations = R.counters.iterations;
+    res.splits = R.counters.splits;
+    res.collapses = R.counters.collapses;
+    res.flips = R.counters.flips;
+  }
+  // descriptors of the untouched rest stay valid when remeshing a part
+  if (whole) remesh_collect_garbage(tm);
+  res.status = st;
+  if (st == Status::cancelled) res.message = "cancelled by the visitor; the mesh is valid";
+  if (st == Status::partial)
+    res.message = "operation budget spent before reaching the face count (surface too thin or "
+                  "anisotropic for the target); the mesh is valid";
+  res.faces_after = static_cast<std::size_t>(faces(tm).size());
+  res.vertices_after = static_cast<std::size_t>(vertices(tm).size());
+  return res;
+}
+
+} // namespace internal
+} // namespace mrepair
+
+#endif // MREPAIR_INTERNAL_REMESH_DRIVER_H
