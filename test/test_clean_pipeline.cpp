@@ -320,13 +320,12 @@ TYPED_TEST(Clean_pipeline, removal_never_leaves_a_pinched_vertex)
   }
   ASSERT_EQ(doomed.size(), 2u);
   ASSERT_NE(sixth, boost::graph_traits<Mesh>::null_face());
-  auto mark = get(CGAL::dynamic_face_property_t<char>(), m);
-  for (face_descriptor f : faces(m)) put(mark, f, char(0));
-  std::size_t extra = 0;
-  std::size_t removed =
-      mrepair::internal::clean_pipeline::remove_faces_without_pinches(m, doomed, mark, extra);
+  mrepair::internal::Local_operations<Mesh, decltype(vpm)> ops(m, vpm);
+  std::size_t removed = ops.remove_faces_without_pinches(doomed);
   EXPECT_EQ(removed, 3u);
-  EXPECT_EQ(extra, 1u);
+  EXPECT_EQ(ops.counts.pinch_faces_removed, 1u);
+  EXPECT_EQ(ops.counts.pinches_resolved, 1u);
+  EXPECT_EQ(ops.counts.faces_removed, 3u);
   EXPECT_EQ(face_count(m), 197u);
   EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
   EXPECT_EQ(border_loops(m), 2u);
@@ -688,13 +687,6 @@ TEST(Clean_pipeline_soup_check, agrees_with_cgal)
 
 // ---- statistics kept current through the edit observer ----------------------
 
-template <class Mesh>
-struct Stats_observer
-{
-  mrepair::Geometric_statistics<Mesh>* st;
-  template <class R> void before(const R& r) { st->before_local_edit(r); }
-  template <class R> void after(const R& r) { st->after_local_edit(r); }
-};
 
 // Locally maintained statistics equal a fresh global computation.
 template <class Mesh>
@@ -727,7 +719,7 @@ template <class Mesh>
   return ::testing::AssertionSuccess();
 }
 
-TYPED_TEST(Clean_pipeline, steps_keep_statistics_current_through_the_observer)
+TYPED_TEST(Clean_pipeline, steps_keep_statistics_current_through_the_local_operations)
 {
   using Mesh = typename TypeParam::Mesh;
   // Jagged border, a dangling ear into a hole, an island, an aborted (slit) fill.
@@ -751,20 +743,32 @@ TYPED_TEST(Clean_pipeline, steps_keep_statistics_current_through_the_observer)
   }
   s = merged(s, translated(grid(2, 1), 40, 40, 0));
   Mesh m = to_mesh<Mesh>(compacted(s));
+  // The steps' workers, run as the pipeline runs them: every edit goes
+  // through one Local_operations holding the statistics.
+  namespace SC = mrepair::internal::clean_pipeline;
+  auto vpm = get(CGAL::vertex_point, m);
   mrepair::Geometric_statistics<Mesh> st(m);
   st.compute_all();
-  Stats_observer<Mesh> obs{&st};
-  auto b = mrepair::clean_boundaries(m, MP::clean_edit_observer(&obs));
+  mrepair::internal::Local_operations<Mesh, decltype(vpm)> ops(m, vpm);
+  ops.keep_current(&st);
+  mrepair::Default_visitor vis;
+  const std::size_t f0 = face_count(m);
+  auto b = SC::clean_boundaries_with(ops, SC::Boundary_settings(), vis);
   EXPECT_GT(b.faces_removed, 0u);
+  EXPECT_EQ(ops.counts.faces_removed, b.faces_removed + b.component_faces_removed);
   EXPECT_TRUE(stats_equal_fresh(m, st));
-  auto c = mrepair::remove_small_components(m, MP::min_component_faces(100, MP::clean_edit_observer(&obs)));
+  auto c = SC::remove_small_components_seeded(ops, faces(m), 100, 1.);
+  EXPECT_EQ(c.components_removed, 1u);  // the island
   EXPECT_TRUE(stats_equal_fresh(m, st));
-  auto h = mrepair::fill_small_holes(m, MP::clean_edit_observer(&obs));
+  SC::Small_hole_filler<Mesh, decltype(vpm)> filler(ops, 100, 1., true, false, 30, 0.4);
+  filler.run(3, vis);
+  const auto& h = filler.result;
   EXPECT_GE(h.holes_filled, 2u);
   EXPECT_GE(h.enlargements, 1u);
   EXPECT_TRUE(stats_equal_fresh(m, st));
   EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
-  (void)c;
+  // the counts of the operations reconcile with the mesh
+  EXPECT_EQ(f0 + ops.counts.faces_added, face_count(m) + ops.counts.faces_removed);
 }
 
 // ---- section 4: the pipeline --------------------------------------------------

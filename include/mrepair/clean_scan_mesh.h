@@ -6,9 +6,10 @@
 #include <mrepair/ensure_valid_mesh.h>
 #include <mrepair/fill_small_holes.h>
 #include <mrepair/input_profile.h>
-#include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
-#include <mrepair/internal/coordinate_range.h>
+#include <mrepair/definitions.h>
 #include <mrepair/internal/clean_scan_mesh/spike_steps.h>
+#include <mrepair/internal/local_operations.h>
+#include <mrepair/internal/utility.h>
 #include <mrepair/parameters.h>
 #include <mrepair/remove_small_components.h>
 #include <mrepair/report.h>
@@ -26,6 +27,7 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <limits>
 #include <string>
 #include <vector>
@@ -220,45 +222,6 @@ void reserve_room_for_fills(CGAL::Surface_mesh<P>& m)
 template <typename PM>
 void reserve_room_for_fills(PM&) {}
 
-inline void add_totals(Small_components_result& a, const Small_components_result& b)
-{
-  a.components_removed += b.components_removed;
-  a.faces_removed += b.faces_removed;
-  a.vertices_removed += b.vertices_removed;
-  a.kept_largest = a.kept_largest || b.kept_largest;
-  if (b.status != Status::ok) a.status = b.status;
-}
-
-inline void add_totals(Boundary_cleaning_result& a, const Boundary_cleaning_result& b)
-{
-  a.boundary_vertices = b.boundary_vertices;  // of the last run
-  a.region_vertices = b.region_vertices;
-  a.rounds += b.rounds;
-  a.bad_vertices_removed += b.bad_vertices_removed;
-  a.bad_vertices_left = b.bad_vertices_left;
-  a.faces_removed += b.faces_removed;
-  a.pinch_faces_removed += b.pinch_faces_removed;
-  a.components_removed += b.components_removed;
-  a.component_faces_removed += b.component_faces_removed;
-  a.vertices_smoothed += b.vertices_smoothed;
-  a.status = b.status;
-}
-
-inline void add_totals(Hole_filling_result& a, const Hole_filling_result& b)
-{
-  a.holes_found += b.holes_found;
-  a.holes_too_large = b.holes_too_large;  // of the last run
-  a.sheet_borders = b.sheet_borders;      // of the last run
-  a.holes_filled += b.holes_filled;
-  a.aborted_fills += b.aborted_fills;
-  a.enlargements += b.enlargements;
-  a.enlargement_faces_removed += b.enlargement_faces_removed;
-  a.faces_added += b.faces_added;
-  a.vertices_added += b.vertices_added;
-  a.open_holes = b.open_holes;
-  a.status = b.status;
-}
-
 }  // namespace clean_pipeline
 }  // namespace internal
 
@@ -348,14 +311,16 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
   const double spike_angle = internal::get_or(np, internal_np::spike_angle,
                                               std::numeric_limits<double>::quiet_NaN());
   const std::size_t min_comp =
-      internal::get_or(np, internal_np::min_component_faces, std::size_t(400));
-  const double relative_comp = internal::get_or(np, internal_np::relative_component_size, 0.01);
+      internal::get_or(np, internal_np::min_component_faces, defaults::min_component_faces);
+  const double relative_comp =
+      internal::get_or(np, internal_np::relative_component_size, defaults::relative_component_size);
   const bool hole_limit_given =
       !CGAL::parameters::is_default_parameter<NamedParameters,
                                               internal_np::max_hole_vertices_t>::value;
-  std::size_t max_hole = internal::get_or(np, internal_np::max_hole_vertices, std::size_t(100));
+  std::size_t max_hole = internal::get_or(np, internal_np::max_hole_vertices, defaults::max_hole_vertices);
   const double hole_share = internal::get_or(np, internal_np::max_hole_area_share, 0.4);
-  const double boundary_angle = internal::get_or(np, internal_np::boundary_dihedral_angle, 120.);
+  const double boundary_angle =
+      internal::get_or(np, internal_np::boundary_dihedral_angle, defaults::boundary_dihedral_angle);
   const double jag_turning = internal::get_or(np, internal_np::jagged_loop_turning, 1.);
   const double erosion_share = internal::get_or(np, internal_np::boundary_erosion_share, 0.5);
   const double density = internal::get_or(np, internal_np::hole_density_factor, 1.);
@@ -395,18 +360,20 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
   if (!steps_given) mask = cad ? unsigned(clean_steps_cad) : unsigned(clean_step_all);
   // CAD holes can be long loops around a flat cut; Liepa's triangulation
   // restricted to the 3D Delaunay edges handles them.
-  if (cad && !hole_limit_given) max_hole = 500;
+  if (cad && !hole_limit_given) max_hole = defaults::max_cad_hole_vertices;
   for (std::size_t i = 0; i < number_of_clean_steps; ++i) r.steps[i].enabled = (mask >> i) & 1u;
 
   if (mask & clean_step_fill_small_holes) SC::reserve_room_for_fills(pmesh);
   SC::Forwarding_visitor<Handle> fwd(&visitor);
-  using Spikes = SC::Spike_steps<PolygonMesh, decltype(vpm)>;
-  Spikes spikes(pmesh, vpm, spike_angle);
-  // The steps of this file keep the statistics of relax_spikes.h current
-  // through local updates, so they are computed once per call.
-  typename Spikes::Observer stats_observer{&spikes};
-  auto fwd_np = CGAL::parameters::vertex_point_map(vpm).visitor(std::ref(fwd));
-  auto obs_np = MP::clean_edit_observer(&stats_observer, fwd_np);
+  // Every edit of the steps goes through `ops`, which keeps the statistics
+  // of the spike and near-degenerate steps current once they exist: they are
+  // computed once per call.
+  internal::Local_operations<PolygonMesh, decltype(vpm)> ops(pmesh, vpm);
+  auto spikes = std::make_unique<SC::Spike_steps<PolygonMesh, decltype(vpm)>>(ops, spike_angle);
+  SC::Boundary_settings boundary_settings;
+  boundary_settings.max_angle = boundary_angle;
+  boundary_settings.jagged_loop_turning = jag_turning;
+  boundary_settings.erosion_share = erosion_share;
 
   // Runs step `i` with `body` (returning the number of changes) in a phase.
   auto run_step = [&](std::size_t i, auto&& body) -> bool {
@@ -431,15 +398,13 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
   {
     std::vector<vertex_descriptor> bad;
     for (vertex_descriptor v : vertices(pmesh))
-      if (!SC::is_finite_point(vpm, v)) bad.push_back(v);
+      if (!internal::is_finite_point(vpm, v)) bad.push_back(v);
     if (!bad.empty() && !r.steps[0].enabled)
       return finish(Status::non_finite_input,
                     "non-finite coordinates and the remove_degenerate_vertices step is disabled");
     bool ok = run_step(0, [&]() {
       SC::Step_outcome o;
       if (!bad.empty()) {
-        auto fmark = get(CGAL::dynamic_face_property_t<char>(), pmesh);
-        for (face_descriptor f : faces(pmesh)) put(fmark, f, char(0));
         std::vector<face_descriptor> doomed;
         for (vertex_descriptor v : bad)
           if (halfedge(v, pmesh) != GT::null_halfedge())
@@ -447,15 +412,13 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
               if (!is_border(h, pmesh)) doomed.push_back(face(h, pmesh));
         // Vertices left without faces are removed by Euler::remove_face; the
         // isolated ones are among the isolated vertices below.
-        std::size_t extra = 0;
         const std::size_t nv = static_cast<std::size_t>(vertices(pmesh).size());
-        r.faces_removed_with_non_finite =
-            SC::remove_faces_without_pinches(pmesh, doomed, fmark, extra);
+        r.faces_removed_with_non_finite = ops.remove_faces_without_pinches(doomed);
         // the removal also drops finite vertices left without faces: those
         // count as isolated, not as non-finite
         std::size_t non_finite_left = 0;
         for (vertex_descriptor v : vertices(pmesh))
-          if (!SC::is_finite_point(vpm, v)) ++non_finite_left;
+          if (!internal::is_finite_point(vpm, v)) ++non_finite_left;
         const std::size_t gone = nv - static_cast<std::size_t>(vertices(pmesh).size());
         r.non_finite_vertices_removed = bad.size() - non_finite_left;
         r.isolated_vertices_removed = gone - r.non_finite_vertices_removed;
@@ -464,11 +427,11 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
       for (vertex_descriptor v : vertices(pmesh))
         if (halfedge(v, pmesh) == GT::null_halfedge()) isolated.push_back(v);
       for (vertex_descriptor v : isolated) {
-        if (!SC::is_finite_point(vpm, v))
+        if (!internal::is_finite_point(vpm, v))
           ++r.non_finite_vertices_removed;
         else
           ++r.isolated_vertices_removed;
-        remove_vertex(v, pmesh);
+        ops.remove_isolated_vertex(v);
       }
       o.changes = r.faces_removed_with_non_finite + r.non_finite_vertices_removed +
                   r.isolated_vertices_removed;
@@ -495,15 +458,11 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
     for (std::size_t i = 0; i < number_of_clean_steps; ++i) before[i] = r.steps[i].changes;
 
     bool ok =
-        run_step(1, [&]() { return spikes.relax(fwd); }) &&
-        run_step(2, [&]() { return spikes.remove_unrelaxable(fwd); }) &&
+        run_step(1, [&]() { return spikes->relax(fwd); }) &&
+        run_step(2, [&]() { return spikes->remove_unrelaxable(fwd); }) &&
         run_step(3, [&]() {
-          Boundary_cleaning_result b = clean_boundaries(
-              pmesh, MP::boundary_dihedral_angle(
-                         boundary_angle,
-                         MP::jagged_loop_turning(
-                             jag_turning, MP::boundary_erosion_share(erosion_share, obs_np))));
-          SC::add_totals(r.boundaries, b);
+          Boundary_cleaning_result b = SC::clean_boundaries_with(ops, boundary_settings, fwd);
+          internal::add_totals(r.boundaries, b);
           SC::Step_outcome o;
           o.status = b.status;
           o.changes = b.faces_removed + b.component_faces_removed;
@@ -512,11 +471,10 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
           return o;
         }) &&
         run_step(4, [&]() {
-          Small_components_result c = remove_small_components(
-              pmesh, MP::min_component_faces(
-                         min_comp, MP::relative_component_size(
-                                       relative_comp, MP::open_debris_only(cad, obs_np))));
-          SC::add_totals(r.components, c);
+          Small_components_result c = SC::remove_small_components_seeded(
+              ops, faces(pmesh), min_comp, relative_comp, static_cast<const std::nullptr_t*>(nullptr),
+              cad);
+          internal::add_totals(r.components, c);
           SC::Step_outcome o;
           o.status = c.status;
           o.changes = c.faces_removed;
@@ -527,19 +485,11 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
         run_step(5, [&]() {
           // CAD: Liepa's patch only (no refinement to a density the part
           // does not have) and no enlargement (it removes the user's faces)
-          Hole_filling_result h = fill_small_holes(
-              pmesh,
-              MP::max_hole_vertices(
-                  max_hole,
-                  MP::hole_density_factor(
-                      density,
-                      MP::fair_hole_patches(
-                          fair && !cad,
-                          MP::refine_hole_patches(
-                              !cad, MP::max_hole_enlargements(
-                                        cad ? std::size_t(0) : std::size_t(3),
-                                        MP::max_hole_area_share(hole_share, obs_np)))))));
-          SC::add_totals(r.holes, h);
+          SC::Small_hole_filler<PolygonMesh, decltype(vpm)> filler(
+              ops, max_hole, density, !cad, fair && !cad, std::size_t(30), hole_share);
+          filler.result.status = filler.run(cad ? std::size_t(0) : std::size_t(3), fwd);
+          const Hole_filling_result& h = filler.result;
+          internal::add_totals(r.holes, h);
           SC::Step_outcome o;
           o.status = h.status;
           o.changes = h.holes_filled + h.enlargement_faces_removed;
@@ -548,11 +498,11 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
           h.to_report(o.report);
           return o;
         }) &&
-        run_step(6, [&]() { return spikes.fix_near_degenerate(fwd); }) &&
-        run_step(7, [&]() { return spikes.relax(fwd); });
+        run_step(6, [&]() { return spikes->fix_near_degenerate(fwd); }) &&
+        run_step(7, [&]() { return spikes->relax(fwd); });
     ++r.iterations;
     if (!ok) {
-      spikes.invalidate();
+      spikes.reset();  // detaches the statistics and drops their maps
       if (gc) SC::collect_garbage_of(pmesh);
       return finish(Status::cancelled);
     }
@@ -568,7 +518,7 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
     }
     previous = delta;
   }
-  spikes.invalidate();  // drop its property maps before the garbage collection
+  spikes.reset();  // detaches the statistics and drops their maps before the garbage collection
   // The last check: whatever the steps left, no exactly degenerate or
   // duplicate face and no non-manifold vertex goes out.
   const bool valid_ok = run_step(8, [&]() {

@@ -2,7 +2,7 @@
 #ifndef MREPAIR_ENSURE_VALID_MESH_H
 #define MREPAIR_ENSURE_VALID_MESH_H
 
-#include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+#include <mrepair/internal/local_operations.h>
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
 #include <mrepair/status.h>
@@ -83,6 +83,7 @@ class Degeneracy_fixer
   using face_descriptor = typename GT::face_descriptor;
   using Point = typename boost::property_traits<VPM>::value_type;
 
+  Local_operations<PM, VPM>& ops_;
   PM& pm_;
   VPM vpm_;
   std::set<face_descriptor> queue_;  // ordered by handle: safe to erase before a removal
@@ -90,12 +91,14 @@ class Degeneracy_fixer
 public:
   Validity_result& r;
 
-  Degeneracy_fixer(PM& pm, VPM vpm, Validity_result& result) : pm_(pm), vpm_(vpm), r(result) {}
+  Degeneracy_fixer(Local_operations<PM, VPM>& ops, Validity_result& result)
+    : ops_(ops), pm_(ops.mesh()), vpm_(ops.vertex_point_map()), r(result)
+  {}
 
   bool finite(face_descriptor f) const
   {
     for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_))
-      if (!clean_pipeline::is_finite_point(vpm_, v)) return false;
+      if (!is_finite_point(vpm_, v)) return false;
     return true;
   }
 
@@ -131,9 +134,7 @@ public:
 private:
   double sqdist(vertex_descriptor u, vertex_descriptor v) const
   {
-    const clean_pipeline::Vec3 d =
-        clean_pipeline::sub(clean_pipeline::point(vpm_, u), clean_pipeline::point(vpm_, v));
-    return clean_pipeline::dot(d, d);
+    return squared_norm(sub(point(vpm_, u), point(vpm_, v)));
   }
 
   void forget_faces_of_edge(halfedge_descriptor h)
@@ -153,7 +154,9 @@ private:
   bool collapse(halfedge_descriptor h, const Point& p, int check)
   {
     const bool check_geometry = check > 0;
-    if (!CGAL::Euler::does_satisfy_link_condition(edge(h, pm_), pm_)) return false;
+    // the link condition alone: a zero-length edge between two border
+    // vertices joins what is one point already
+    if (!ops_.satisfies_link_condition(h)) return false;
     const vertex_descriptor a = source(h, pm_), b = target(h, pm_);
     if (check_geometry) {
       // no surviving face may turn over or become degenerate
@@ -174,27 +177,23 @@ private:
           }
           if (q[0] == q[1] || q[1] == q[2] || q[0] == q[2] || CGAL::collinear(q[0], q[1], q[2]))
             return false;
-          const clean_pipeline::Vec3 n0 = normal(old), n1 = normal(q);
-          if (check > 1 && !(clean_pipeline::dot(n0, n1) > 0.)) return false;
+          if (check > 1 && !(dot(normal(old), normal(q)) > 0.)) return false;
         }
     }
     std::size_t removed = 0;
     if (!is_border(h, pm_)) ++removed;
     if (!is_border(opposite(h, pm_), pm_)) ++removed;
     forget_faces_of_edge(h);
-    const vertex_descriptor kept = CGAL::Euler::collapse_edge(edge(h, pm_), pm_);
-    put(vpm_, kept, p);
+    const vertex_descriptor kept = ops_.collapse_edge(h, p);
     r.faces_removed_degenerate += removed;
     requeue_around(kept);
     return true;
   }
 
-  static clean_pipeline::Vec3 normal(const std::array<Point, 3>& q)
+  static Vec3 normal(const std::array<Point, 3>& q)
   {
-    clean_pipeline::Vec3 p[3];
-    for (int i = 0; i < 3; ++i)
-      p[i] = {CGAL::to_double(q[i].x()), CGAL::to_double(q[i].y()), CGAL::to_double(q[i].z())};
-    return clean_pipeline::cross(clean_pipeline::sub(p[1], p[0]), clean_pipeline::sub(p[2], p[0]));
+    const Vec3 p0 = to_vec3(q[0]);
+    return cross(sub(to_vec3(q[1]), p0), sub(to_vec3(q[2]), p0));
   }
 
   bool fix(face_descriptor f)
@@ -220,20 +219,19 @@ private:
     const halfedge_descriptor ba = opposite(ab, pm_);
     if (!is_border(ba, pm_)) {
       // the triangle across ab is split at c by the flip: no vertex moves
-      const vertex_descriptor d = target(next(ba, pm_), pm_);
-      if (d != c && !halfedge(c, d, pm_).second) {
+      if (ops_.flip_keeps_manifold(ab)) {
         const face_descriptor g = face(ba, pm_);
-        CGAL::Euler::flip_edge(ab, pm_);
+        ops_.flip_edge(ab);
         ++r.caps_flipped;
         for (face_descriptor x : {f, g})
           if (degenerate(x)) queue_.insert(x);
         return true;
       }
-    } else if (!clean_pipeline::is_border_vertex(c, pm_)) {
+    } else if (!is_border_vertex(c, pm_)) {
       // a zero-area face on the border: removing it loses no surface, and c
       // (interior so far) joins the border without a pinch
       queue_.erase(f);
-      CGAL::Euler::remove_face(halfedge(f, pm_), pm_);
+      ops_.remove_face(f);
       ++r.border_faces_removed;
       ++r.faces_removed_degenerate;
       return true;
@@ -260,10 +258,10 @@ private:
     // the mesh opens along a slit of zero width and loses no surface
     bool inside = true;
     for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_))
-      if (clean_pipeline::is_border_vertex(v, pm_)) inside = false;
+      if (is_border_vertex(v, pm_)) inside = false;
     if (inside) {
       queue_.erase(f);
-      CGAL::Euler::remove_face(halfedge(f, pm_), pm_);
+      ops_.remove_face(f);
       ++r.border_faces_removed;
       ++r.faces_removed_degenerate;
       return true;
@@ -324,6 +322,7 @@ Validity_result ensure_valid_mesh(PolygonMesh& pmesh,
     r.message = "ensure_valid_mesh needs a triangle mesh";
     return r;
   }
+  internal::Local_operations<PolygonMesh, decltype(vpm)> ops(pmesh, vpm);
   // Pillows first (two faces sharing all three edges, a detached double-sided
   // fin): an earlier step may have flattened one, and no local edit fixes a
   // degenerate pillow face, but the pair is a duplicate and goes whole.
@@ -343,10 +342,10 @@ Validity_result ensure_valid_mesh(PolygonMesh& pmesh,
       }
       if (pillow && g != f) pillow_faces.push_back(f);  // both faces are listed
     }
-    for (face_descriptor f : pillow_faces) CGAL::Euler::remove_face(halfedge(f, pmesh), pmesh);
+    ops.remove_components(pillow_faces);
     r.duplicate_faces_removed += pillow_faces.size();
   }
-  internal::validity::Degeneracy_fixer<PolygonMesh, decltype(vpm)> fixer(pmesh, vpm, r);
+  internal::validity::Degeneracy_fixer<PolygonMesh, decltype(vpm)> fixer(ops, r);
   fixer.run(cap);
 
   // Duplicate faces: the same three vertices.
@@ -381,18 +380,13 @@ Validity_result ensure_valid_mesh(PolygonMesh& pmesh,
       if (pillow) {
         gone.insert(pr.first);
         gone.insert(pr.second);
-        CGAL::Euler::remove_face(halfedge(pr.first, pmesh), pmesh);
-        CGAL::Euler::remove_face(halfedge(pr.second, pmesh), pmesh);
+        ops.remove_components({pr.first, pr.second});
         r.duplicate_faces_removed += 2;
       } else {
-        auto fmark = get(CGAL::dynamic_face_property_t<char>(), pmesh);
-        for (face_descriptor f : faces(pmesh)) put(fmark, f, char(0));
         std::vector<face_descriptor> doomed(1, pr.second);
-        std::size_t extra = 0;
-        for (face_descriptor f : doomed) gone.insert(f);
+        gone.insert(pr.second);
         // faces removed to avoid a pinch are listed in `doomed` afterwards
-        r.duplicate_faces_removed +=
-            internal::clean_pipeline::remove_faces_without_pinches(pmesh, doomed, fmark, extra);
+        r.duplicate_faces_removed += ops.remove_faces_without_pinches(doomed);
         for (face_descriptor f : doomed) gone.insert(f);
       }
     }

@@ -2,16 +2,14 @@
 #ifndef MREPAIR_GEOMETRIC_STATISTICS_H
 #define MREPAIR_GEOMETRIC_STATISTICS_H
 
+#include <mrepair/definitions.h>
+#include <mrepair/internal/utility.h>
+
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
 #include <CGAL/number_utils.h>
-
-#ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#endif
 
 #include <array>
 #include <cmath>
@@ -54,11 +52,6 @@
 /// \endcode
 
 namespace mrepair {
-
-namespace internal {
-template <typename T> struct Is_surface_mesh : std::false_type {};
-template <typename P> struct Is_surface_mesh<CGAL::Surface_mesh<P>> : std::true_type {};
-} // namespace internal
 
 /// \ingroup mrepair_core
 /// statistics of one face.
@@ -338,18 +331,18 @@ public:
   {
     halfedge_descriptor h0 = halfedge(f, *tm_), h1 = next(h0, *tm_), h2 = next(h1, *tm_);
     const Vec a = point(source(h0, *tm_)), b = point(target(h0, *tm_)), c = point(target(h1, *tm_));
-    const Vec ab = sub(b, a), bc = sub(c, b), ca = sub(a, c);
+    const Vec ab = internal::sub(b, a), bc = internal::sub(c, b), ca = internal::sub(a, c);
     Face_statistics fs;
-    Vec n = cross(ab, sub(c, a));
-    const double nn = norm(n);
+    Vec n = internal::cross(ab, internal::sub(c, a));
+    const double nn = internal::norm(n);
     fs.area = 0.5 * nn;
     if (nn > 0 && std::isfinite(nn)) fs.normal = Vec{{n[0] / nn, n[1] / nn, n[2] / nn}};
     fs.barycenter = Vec{{(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3}};
     // corner angles: at c opposite h0 (a->b), at a opposite h1, at b opposite h2
     // two corners by atan2, the third as pi minus their sum (atan2 dominates the
     // pass); |u x v| is twice the area at every corner, so nn serves all three
-    const double aa = std::atan2(nn, -dot(ab, ca)), ab_ = std::atan2(nn, -dot(bc, ab));
-    const double ac = (std::max)(0., 3.14159265358979323846 - aa - ab_);
+    const double aa = std::atan2(nn, -internal::dot(ab, ca)), ab_ = std::atan2(nn, -internal::dot(bc, ab));
+    const double ac = (std::max)(0., internal::pi - aa - ab_);
     set_opposite_angle(h0, ac);
     set_opposite_angle(h1, aa);
     set_opposite_angle(h2, ab_);
@@ -362,13 +355,13 @@ public:
   void compute_edge(halfedge_descriptor h)
   {
     halfedge_descriptor o = opposite(h, *tm_);
-    const double l = norm(sub(point(target(h, *tm_)), point(source(h, *tm_))));
+    const double l = internal::norm(internal::sub(point(target(h, *tm_)), point(source(h, *tm_))));
     double d = 0;
     face_descriptor f1 = face(h, *tm_), f2 = face(o, *tm_);
     if (f1 != GT::null_face() && f2 != GT::null_face()) {
       const Vec& n1 = get(fstats_, f1).normal;
       const Vec& n2 = get(fstats_, f2).normal;
-      if (!is_zero(n1) && !is_zero(n2)) d = angle(n1, n2);
+      d = internal::face_normal_angle(n1, n2);  // 0 next to a zero-area face
     }
     for (halfedge_descriptor x : {h, o}) {
       Halfedge_statistics s = get(hstats_, x);
@@ -395,19 +388,6 @@ public:
     put(vstats_, v, s);
   }
 
-  // ---- small vector helpers (also used by the algorithms) ------------------
-  static Vec sub(const Vec& a, const Vec& b) { return Vec{{a[0] - b[0], a[1] - b[1], a[2] - b[2]}}; }
-  static Vec neg(const Vec& a) { return Vec{{-a[0], -a[1], -a[2]}}; }
-  static double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-  static Vec cross(const Vec& a, const Vec& b)
-  {
-    return Vec{{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
-  }
-  static double norm(const Vec& a) { return std::sqrt(dot(a, a)); }
-  static bool is_zero(const Vec& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
-  /// angle between two vectors in [0, pi], robust near 0 and pi (atan2 form); 0 if one is zero.
-  static double angle(const Vec& a, const Vec& b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
-
 private:
   std::uint32_t next_gen()
   {
@@ -430,16 +410,8 @@ private:
   template <typename Range, typename F>
   void for_each(const Range& r, const F& f)
   {
-#ifdef CGAL_LINKED_WITH_TBB
-    if (parallel_ && internal::Is_surface_mesh<TriangleMesh>::value && r.size() > 20000) {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, r.size(), 4096),
-                        [&](const tbb::blocked_range<std::size_t>& b) {
-                          for (std::size_t i = b.begin(); i != b.end(); ++i) f(r[i]);
-                        });
-      return;
-    }
-#endif
-    for (const auto& x : r) f(x);
+    internal::parallel_for_mesh_elements<TriangleMesh>(
+        r.size(), [&](std::size_t i) { f(r[i]); }, parallel_);
   }
 };
 

@@ -112,7 +112,7 @@ namespace scan_clean {
 template <typename NP>
 bool read_spike_settings(const NP& np, Spike_settings& s, std::string& message)
 {
-  const double angle = get_or<double>(np, internal_np::spike_angle, 100.0);
+  const double angle = get_or<double>(np, internal_np::spike_angle, defaults::spike_angle);
   const double a = get_or<double>(np, internal_np::relax_start_angle, angle / 2);
   const double b = get_or<double>(np, internal_np::relax_full_angle, angle);
   s.height_factor = get_or<double>(np, internal_np::spike_height_factor, default_spike_height_factor);
@@ -164,8 +164,10 @@ Spike_relaxation_result relax_spikes(TriangleMesh& tm, Geometric_statistics<Tria
   r.spiked_vertices_before = S.size();
   SC::Relax_counts c;
   if (!S.empty()) {
+    internal::Local_operations<TriangleMesh, VPM> ops(tm, stats.vertex_point_map());
+    ops.keep_current(&stats);
     SC::Spike_relaxer<TriangleMesh, VPM, internal::Visitor_handle<CGAL_NP_CLASS>> worker(
-        tm, stats.vertex_point_map(), stats, vis, s, c);
+        ops, stats, vis, s, c);
     worker.run(std::move(S));
   }
   r.vertices_relaxed = c.vertices_relaxed;
@@ -243,7 +245,9 @@ Spike_removal_result remove_unrelaxable_spikes(TriangleMesh& tm,
   auto S = SC::collect_spiked(stats, s);
   SC::Removal_counts c;
   if (!S.empty()) {
-    SC::Spike_remover<TriangleMesh, VPM> worker(tm, stats, s, c);
+    internal::Local_operations<TriangleMesh, VPM> ops(tm, stats.vertex_point_map());
+    ops.keep_current(&stats);
+    SC::Spike_remover<TriangleMesh, VPM> worker(ops, stats, s, c);
     worker.run(S);
   }
   r.spiked_vertices_found = S.size();

@@ -95,29 +95,34 @@ Near_degenerate_faces_result repair_near_degenerate_faces(
   internal::Visitor_handle<CGAL_NP_CLASS> vis(np);
   internal::Phase_scope<internal::Visitor_handle<CGAL_NP_CLASS>> phase(vis, "near_degenerate_faces");
   SC::Near_degenerate_settings s;
-  s.zero_edge_factor = internal::get_or<double>(np, internal_np::zero_edge_factor, 0.1);
-  s.skinny_edge_factor = internal::get_or<double>(np, internal_np::skinny_edge_factor, 0.25);
-  const double skinny_deg = internal::get_or<double>(np, internal_np::skinny_angle, 10.0);
+  internal::Near_degenerate_criterion& k = s.criterion;
+  k.zero_edge_factor =
+      internal::get_or<double>(np, internal_np::zero_edge_factor, defaults::zero_edge_factor);
+  k.skinny_edge_factor =
+      internal::get_or<double>(np, internal_np::skinny_edge_factor, defaults::skinny_edge_factor);
+  const double skinny_deg = internal::get_or<double>(np, internal_np::skinny_angle, defaults::skinny_angle);
   const double dev_deg = internal::get_or<double>(np, internal_np::max_normal_deviation, 45.0);
   // default cap: collapses alone cannot exceed |E|; the cap bounds flip sequences
   s.max_operations = internal::get_or<std::size_t>(np, internal_np::max_degenerate_operations,
                                                    3 * stats.edge_count() + 100);
-  if (!(s.zero_edge_factor >= 0) || !std::isfinite(s.zero_edge_factor) ||
-      !(s.skinny_edge_factor >= 0) || !std::isfinite(s.skinny_edge_factor) ||
+  if (!(k.zero_edge_factor >= 0) || !std::isfinite(k.zero_edge_factor) ||
+      !(k.skinny_edge_factor >= 0) || !std::isfinite(k.skinny_edge_factor) ||
       !(skinny_deg >= 0 && skinny_deg <= 180) || !(dev_deg > 0 && dev_deg <= 180)) {
     r.status = Status::invalid_parameter;
     r.message = "zero_edge_factor, skinny_edge_factor >= 0; skinny_angle in [0,180]; "
                 "max_normal_deviation in (0,180]";
     return r;
   }
-  s.skinny_angle = SC::to_radians(skinny_deg);
-  s.max_normal_deviation = SC::to_radians(dev_deg);
+  k.skinny_angle = internal::to_radians(skinny_deg);
+  s.max_normal_deviation = internal::to_radians(dev_deg);
   r.faces_before = faces(tm).size();
   std::vector<typename boost::graph_traits<TriangleMesh>::halfedge_descriptor> flagged;
   r.near_degenerate_faces_before = SC::count_near_degenerate_faces(stats, s, &flagged);
   SC::Near_degenerate_counts c;
+  internal::Local_operations<TriangleMesh, VPM> ops(tm, stats.vertex_point_map());
+  ops.keep_current(&stats);
   SC::Near_degenerate_repairer<TriangleMesh, VPM, internal::Visitor_handle<CGAL_NP_CLASS>> worker(
-      tm, stats.vertex_point_map(), stats, vis, s, c);
+      ops, stats, vis, s, c);
   worker.run(flagged);
   r.collapsible_edges_initial = c.collapsible_edges_initial;
   r.edges_collapsed = c.edges_collapsed;

@@ -2,12 +2,14 @@
 // Adaptor from the pipeline (clean_scan_mesh.h) to the scan-cleaning-I steps
 // (relax_spikes.h, repair_near_degenerate_faces.h): each call returns a
 // uniform outcome (status, number of changes, report). The geometric
-// statistics are shared by consecutive scan-cleaning-I steps and dropped
-// (`invalidate`) before a step that edits the mesh without updating them.
+// statistics are computed on first need and attached to the pipeline's local
+// operations, which keep them current through every other step's edits;
+// they are detached when the adaptor goes.
 #ifndef MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SPIKE_STEPS_H
 #define MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SPIKE_STEPS_H
 
 #include <mrepair/geometric_statistics.h>
+#include <mrepair/internal/local_operations.h>
 #include <mrepair/parameters.h>
 #include <mrepair/relax_spikes.h>
 #include <mrepair/repair_near_degenerate_faces.h>
@@ -36,16 +38,17 @@ template <typename PM, typename VPM>
 class Spike_steps
 {
   using Stats = Geometric_statistics<PM, VPM>;
+  Local_operations<PM, VPM>& ops_;
   PM& pm_;
-  VPM vpm_;
   double spike_angle_;  // NaN: the default of relax_spikes.h
   std::unique_ptr<Stats> stats_;
 
   Stats& stats()
   {
     if (!stats_) {
-      stats_.reset(new Stats(pm_, vpm_));
+      stats_.reset(new Stats(pm_, ops_.vertex_point_map()));
       stats_->compute_all();
+      ops_.keep_current(stats_.get());
     }
     return *stats_;
   }
@@ -60,29 +63,15 @@ class Spike_steps
   }
 
 public:
-  /// keeps the statistics (when they exist) current through the edits of
-  /// the other steps: `before`/`after` of `Geometric_statistics`' local update.
-  struct Observer
-  {
-    Spike_steps* steps;
-    template <typename R>
-    void before(const R& r)
-    {
-      if (steps->stats_) steps->stats_->before_local_edit(r);
-    }
-    template <typename R>
-    void after(const R& r)
-    {
-      if (steps->stats_) steps->stats_->after_local_edit(r);
-    }
-  };
-
-  Spike_steps(PM& pm, VPM vpm, double spike_angle)
-    : pm_(pm), vpm_(vpm), spike_angle_(spike_angle)
+  Spike_steps(Local_operations<PM, VPM>& ops, double spike_angle)
+    : ops_(ops), pm_(ops.mesh()), spike_angle_(spike_angle)
   {}
-
-  /// the mesh is about to change without the statistics being updated.
-  void invalidate() { stats_.reset(); }
+  Spike_steps(const Spike_steps&) = delete;
+  Spike_steps& operator=(const Spike_steps&) = delete;
+  ~Spike_steps()
+  {
+    if (stats_) ops_.keep_current(nullptr);
+  }
 
   template <typename Visitor>
   Step_outcome relax(Visitor& vis)

@@ -1,20 +1,14 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
-// Helpers shared by repair_near_degenerate_faces.h and relax_spikes.h: input
-// checks and a parallel loop over a vector of descriptors.
+// The input check shared by repair_near_degenerate_faces.h and relax_spikes.h.
 #ifndef MREPAIR_INTERNAL_SCAN_CLEAN_COMMON_H
 #define MREPAIR_INTERNAL_SCAN_CLEAN_COMMON_H
 
 #include <mrepair/geometric_statistics.h>
-#include <mrepair/internal/coordinate_range.h>
+#include <mrepair/internal/utility.h>
 #include <mrepair/status.h>
 
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/number_utils.h>
-
-#ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#endif
 
 #include <cmath>
 #include <string>
@@ -23,23 +17,6 @@
 namespace mrepair {
 namespace internal {
 namespace scan_clean {
-
-// Runs f(i) for i in [0, n); in parallel on Surface_mesh (array-backed dynamic
-// maps) when TBB is linked and n is large enough to pay for the threads.
-template <typename Mesh, typename F>
-void parallel_for_index(std::size_t n, const F& f)
-{
-#ifdef CGAL_LINKED_WITH_TBB
-  if (Is_surface_mesh<Mesh>::value && n > 20000) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
-                      [&](const tbb::blocked_range<std::size_t>& b) {
-                        for (std::size_t i = b.begin(); i != b.end(); ++i) f(i);
-                      });
-    return;
-  }
-#endif
-  for (std::size_t i = 0; i < n; ++i) f(i);
-}
 
 // Checks what every scan-cleaning call needs: a triangle mesh with finite
 // coordinates within `max_bbox_diagonal`. Returns ok, empty_input,
@@ -69,8 +46,6 @@ Status check_input(const Mesh& m, const VPM& vpm, std::string& message)
   }
   return Status::ok;
 }
-
-inline double to_radians(double deg) { return deg * 3.14159265358979323846 / 180.0; }
 
 } // namespace scan_clean
 } // namespace internal

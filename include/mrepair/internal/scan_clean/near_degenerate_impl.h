@@ -3,7 +3,9 @@
 #ifndef MREPAIR_INTERNAL_SCAN_CLEAN_NEAR_DEGENERATE_IMPL_H
 #define MREPAIR_INTERNAL_SCAN_CLEAN_NEAR_DEGENERATE_IMPL_H
 
+#include <mrepair/definitions.h>
 #include <mrepair/geometric_statistics.h>
+#include <mrepair/internal/local_operations.h>
 #include <mrepair/internal/scan_clean/common.h>
 
 #include <CGAL/boost/graph/Euler_operations.h>
@@ -23,9 +25,7 @@ namespace scan_clean {
 
 struct Near_degenerate_settings
 {
-  double zero_edge_factor = 0.1;     // epsilon
-  double skinny_edge_factor = 0.25;  // delta
-  double skinny_angle = 0.0;         // radians
+  Near_degenerate_criterion criterion;  // definitions.h
   double max_normal_deviation = 0.0; // radians
   std::size_t max_operations = 0;
 };
@@ -55,14 +55,12 @@ std::size_t count_near_degenerate_faces(
   using face_descriptor = typename boost::graph_traits<Mesh>::face_descriptor;
   std::vector<face_descriptor> fs(faces(m).begin(), faces(m).end());
   std::vector<unsigned char> bad(fs.size(), 0); // bit i: i-th halfedge of the face
-  const double zero_len = s.zero_edge_factor * st.global_mean_edge_length();
-  parallel_for_index<Mesh>(fs.size(), [&](std::size_t i) {
+  const double global_mean = st.global_mean_edge_length();
+  parallel_for_mesh_elements<Mesh>(fs.size(), [&](std::size_t i) {
     unsigned char bit = 1, mask = 0;
     for (auto h : CGAL::halfedges_around_face(halfedge(fs[i], m), m)) {
-      const double l = st.length(h);
-      if (l < zero_len ||
-          (st.opposite_angle(h) < s.skinny_angle &&
-           l < s.skinny_edge_factor * st.local_mean_edge_length(h)))
+      if (s.criterion.edge_makes_face_near_degenerate(st.length(h), st.opposite_angle(h), global_mean,
+                                                      st.local_mean_edge_length(h)))
         mask |= bit;
       bit = static_cast<unsigned char>(bit << 1);
     }
@@ -91,7 +89,7 @@ class Near_degenerate_repairer
   using edge_descriptor = typename GT::edge_descriptor;
   using face_descriptor = typename GT::face_descriptor;
   using Stats = Geometric_statistics<Mesh, VPM>;
-  using Vec = typename Stats::Vec;
+  using Vec = Vec3;
   using Stamp_map =
       typename boost::property_map<Mesh, CGAL::dynamic_halfedge_property_t<std::uint32_t>>::type;
 
@@ -105,8 +103,8 @@ class Near_degenerate_repairer
 
   enum Outcome { done, rejected_link, rejected_normal, rejected_boundary };
 
+  Local_operations<Mesh, VPM>& ops_;
   Mesh& tm_;
-  VPM vpm_;
   Stats& st_;
   VisitorHandle& vis_;
   Near_degenerate_settings s_;
@@ -116,10 +114,11 @@ class Near_degenerate_repairer
   double cos_dev_;
 
 public:
-  Near_degenerate_repairer(Mesh& tm, VPM vpm, Stats& st, VisitorHandle& vis,
+  // `ops` keeps `st` current (Local_operations::keep_current).
+  Near_degenerate_repairer(Local_operations<Mesh, VPM>& ops, Stats& st, VisitorHandle& vis,
                            const Near_degenerate_settings& s, Near_degenerate_counts& c)
-    : tm_(tm), vpm_(vpm), st_(st), vis_(vis), s_(s), c_(c),
-      stamp_(get(CGAL::dynamic_halfedge_property_t<std::uint32_t>(), tm)),
+    : ops_(ops), tm_(ops.mesh()), st_(st), vis_(vis), s_(s), c_(c),
+      stamp_(get(CGAL::dynamic_halfedge_property_t<std::uint32_t>(), tm_)),
       cos_dev_(std::cos(s.max_normal_deviation))
   {}
 
@@ -173,16 +172,16 @@ public:
   }
 
 private:
+  // the criterion of definitions.h in either face of the edge
   bool collapsible(halfedge_descriptor h) const
   {
-    const double l = st_.length(h);
-    if (l < s_.zero_edge_factor * st_.global_mean_edge_length()) return true; // zero edge
-    if (!(l < s_.skinny_edge_factor * st_.local_mean_edge_length(h))) return false;
-    halfedge_descriptor o = opposite(h, tm_);
-    const double inf = std::numeric_limits<double>::infinity();
-    const double a = is_border(h, tm_) ? inf : st_.opposite_angle(h);
-    const double b = is_border(o, tm_) ? inf : st_.opposite_angle(o);
-    return (std::min)(a, b) < s_.skinny_angle; // skinny edge
+    const double l = st_.length(h), global_mean = st_.global_mean_edge_length();
+    const double local_mean = st_.local_mean_edge_length(h);
+    for (halfedge_descriptor x : {h, opposite(h, tm_)})
+      if (!is_border(x, tm_) &&
+          s_.criterion.edge_makes_face_near_degenerate(l, st_.opposite_angle(x), global_mean, local_mean))
+        return true;
+    return s_.criterion.is_zero_edge(l, global_mean);  // a zero border edge
   }
 
   void bump(halfedge_descriptor h)
@@ -211,20 +210,14 @@ private:
     }
   }
 
-  static bool is_border_vertex(vertex_descriptor v, const Mesh& m)
-  {
-    for (halfedge_descriptor h : CGAL::halfedges_around_target(v, m))
-      if (is_border(h, m)) return true;
-    return false;
-  }
-
   Outcome try_collapse(halfedge_descriptor h)
   {
     const vertex_descriptor u = source(h, tm_), w = target(h, tm_);
     const bool bu = is_border_vertex(u, tm_), bw = is_border_vertex(w, tm_);
-    const bool be = is_border_edge(h, tm_);
-    if (bu && bw && !be) return rejected_boundary; // would pinch the boundary
-    if (!CGAL::Euler::does_satisfy_link_condition(edge(h, tm_), tm_)) return rejected_link;
+    using Check = typename Local_operations<Mesh, VPM>::Collapse_check;
+    const Check check = ops_.check_collapse(h);
+    if (check == Check::would_pinch_border) return rejected_boundary;
+    if (check == Check::fails_link_condition) return rejected_link;
     const Vec pu = st_.point(u), pw = st_.point(w);
     const Vec mid{{0.5 * (pu[0] + pw[0]), 0.5 * (pu[1] + pw[1]), 0.5 * (pu[2] + pw[2])}};
     std::array<Vec, 3> cand;
@@ -257,19 +250,19 @@ private:
         // f = (x, a, b) in order, starting at the corner x
         const Vec a = st_.point(target(next(hx, tm_), tm_));
         const Vec b = st_.point(source(hx, tm_));
-        const Vec n = Stats::cross(Stats::sub(a, p), Stats::sub(b, p));
-        const double nn = Stats::norm(n);
-        const double scale = Stats::dot(Stats::sub(a, p), Stats::sub(a, p)) +
-                             Stats::dot(Stats::sub(b, p), Stats::sub(b, p)) +
-                             Stats::dot(Stats::sub(a, b), Stats::sub(a, b));
+        const Vec n = cross(sub(a, p), sub(b, p));
+        const double nn = norm(n);
+        const double scale = dot(sub(a, p), sub(a, p)) +
+                             dot(sub(b, p), sub(b, p)) +
+                             dot(sub(a, b), sub(a, b));
         const Vec& old = st_.normal(f);
-        const bool old_degenerate = Stats::is_zero(old);
+        const bool old_degenerate = is_zero(old);
         if (!(nn > 1e-12 * scale)) {
           if (!old_degenerate) return false; // becomes degenerate
           continue;
         }
         if (old_degenerate) continue;
-        if (Stats::dot(n, old) < cos_dev_ * nn) return false;
+        if (dot(n, old) < cos_dev_ * nn) return false;
       }
     return true;
   }
@@ -284,12 +277,7 @@ private:
     const vertex_descriptor u = source(h, tm_), w = target(h, tm_);
     bump_around(u); // covers every halfedge the collapse removes
     bump_around(w);
-    const edge_descriptor e = edge(h, tm_);
-    st_.before_edge_collapse(e);
-    vertex_descriptor v = CGAL::Euler::collapse_edge(e, tm_);
-    using Point = typename boost::property_traits<VPM>::value_type;
-    put(vpm_, v, Point(p[0], p[1], p[2]));
-    st_.after_edge_collapse(v);
+    const vertex_descriptor v = ops_.collapse_edge(h, p);
     ++c_.edges_collapsed;
     push_around(v);
   }
@@ -303,35 +291,30 @@ private:
       halfedge_descriptor g = side;
       for (halfedge_descriptor x : CGAL::halfedges_around_face(side, tm_))
         if (st_.opposite_angle(x) > st_.opposite_angle(g)) g = x;
-      if (st_.opposite_angle(g) <= 0.5 * 3.14159265358979323846) continue; // not a cap
-      if (is_border_edge(g, tm_)) continue;
+      if (st_.opposite_angle(g) <= 0.5 * pi) continue; // not a cap
+      if (!ops_.flip_keeps_manifold(g, 3)) continue;
       const halfedge_descriptor og = opposite(g, tm_);
       const vertex_descriptor a = source(g, tm_), b = target(g, tm_);
       const vertex_descriptor c = target(next(g, tm_), tm_), d = target(next(og, tm_), tm_);
-      if (c == d || halfedge(c, d, tm_).second) continue;
-      if (degree(a, tm_) <= 3 || degree(b, tm_) <= 3) continue;
       const Vec pa = st_.point(a), pb = st_.point(b), pc = st_.point(c), pd = st_.point(d);
       // reference: area-weighted normal of the two old faces (a,b,c), (b,a,d)
-      const Vec n1 = Stats::cross(Stats::sub(pb, pa), Stats::sub(pc, pa));
-      const Vec n2 = Stats::cross(Stats::sub(pa, pb), Stats::sub(pd, pb));
+      const Vec n1 = cross(sub(pb, pa), sub(pc, pa));
+      const Vec n2 = cross(sub(pa, pb), sub(pd, pb));
       const Vec ref{{n1[0] + n2[0], n1[1] + n2[1], n1[2] + n2[2]}};
-      const double nref = Stats::norm(ref);
+      const double nref = norm(ref);
       if (!(nref > 0)) continue;
       // new faces (a,d,c) and (d,b,c)
-      const Vec m1 = Stats::cross(Stats::sub(pd, pa), Stats::sub(pc, pa));
-      const Vec m2 = Stats::cross(Stats::sub(pb, pd), Stats::sub(pc, pd));
-      const double nm1 = Stats::norm(m1), nm2 = Stats::norm(m2);
+      const Vec m1 = cross(sub(pd, pa), sub(pc, pa));
+      const Vec m2 = cross(sub(pb, pd), sub(pc, pd));
+      const double nm1 = norm(m1), nm2 = norm(m2);
       if (!(nm1 > 0) || !(nm2 > 0)) continue;
-      if (Stats::dot(m1, ref) < cos_dev_ * nm1 * nref || Stats::dot(m2, ref) < cos_dev_ * nm2 * nref)
+      if (dot(m1, ref) < cos_dev_ * nm1 * nref || dot(m2, ref) < cos_dev_ * nm2 * nref)
         continue;
       const double old_min = (std::min)(st_.min_angle(face(g, tm_)), st_.min_angle(face(og, tm_)));
       const double new_min = (std::min)(min_angle(pa, pd, pc), min_angle(pd, pb, pc));
       if (!(new_min > old_min)) continue;
       for (vertex_descriptor x : {a, b}) bump_around(x);
-      const edge_descriptor e = edge(g, tm_);
-      st_.before_edge_flip(e);
-      CGAL::Euler::flip_edge(g, tm_);
-      st_.after_edge_flip(e);
+      ops_.flip_edge(g);
       ++c_.edges_flipped;
       for (vertex_descriptor x : {a, b, c, d}) push_around(x);
       return true;
@@ -341,9 +324,9 @@ private:
 
   static double min_angle(const Vec& a, const Vec& b, const Vec& c)
   {
-    const double x = Stats::angle(Stats::sub(b, a), Stats::sub(c, a));
-    const double y = Stats::angle(Stats::sub(c, b), Stats::sub(a, b));
-    const double z = Stats::angle(Stats::sub(a, c), Stats::sub(b, c));
+    const double x = angle(sub(b, a), sub(c, a));
+    const double y = angle(sub(c, b), sub(a, b));
+    const double z = angle(sub(a, c), sub(b, c));
     return (std::min)(x, (std::min)(y, z));
   }
 };

@@ -4,6 +4,7 @@
 #define MREPAIR_INTERNAL_SCAN_CLEAN_SPIKES_IMPL_H
 
 #include <mrepair/geometric_statistics.h>
+#include <mrepair/internal/local_operations.h>
 #include <mrepair/internal/scan_clean/common.h>
 #include <mrepair/internal/scan_clean/spike_criterion.h>
 
@@ -92,7 +93,7 @@ collect_spiked(const Geometric_statistics<Mesh, VPM>& st, const Spike_settings& 
   std::vector<vertex_descriptor> vs(vertices(m).begin(), vertices(m).end());
   std::vector<unsigned char> flag(vs.size(), 0);
   Spike_detector<Mesh, VPM> det(st, s);
-  parallel_for_index<Mesh>(vs.size(), [&](std::size_t i) {
+  parallel_for_mesh_elements<Mesh>(vs.size(), [&](std::size_t i) {
     if (det.by_dihedral(vs[i])) flag[i] = 1;
     else if (det.by_height(vs[i])) flag[i] = 2;
   });
@@ -135,8 +136,8 @@ class Spike_relaxer
   using Mark =
       typename boost::property_map<Mesh, CGAL::dynamic_vertex_property_t<std::uint32_t>>::type;
 
+  Local_operations<Mesh, VPM>& ops_;
   Mesh& tm_;
-  VPM vpm_;
   Stats& st_;
   VisitorHandle& vis_;
   const Spike_settings& s_;
@@ -148,12 +149,13 @@ class Spike_relaxer
   std::uint32_t gen_ = 0;
 
 public:
-  Spike_relaxer(Mesh& tm, VPM vpm, Stats& st, VisitorHandle& vis, const Spike_settings& s,
-                Relax_counts& c)
-    : tm_(tm), vpm_(vpm), st_(st), vis_(vis), s_(s), c_(c), det_(st, s),
-      mark_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm)),
-      in_w_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm)),
-      moved_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm))
+  // `ops` keeps `st` current (Local_operations::keep_current).
+  Spike_relaxer(Local_operations<Mesh, VPM>& ops, Stats& st, VisitorHandle& vis,
+                const Spike_settings& s, Relax_counts& c)
+    : ops_(ops), tm_(ops.mesh()), st_(st), vis_(vis), s_(s), c_(c), det_(st, s),
+      mark_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm_)),
+      in_w_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm_)),
+      moved_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm_))
   {}
 
   // w(theta) of eq. (2), with the bracket the paper misprints put right:
@@ -214,7 +216,7 @@ public:
         if (get(mark_, x) == g) return;
         put(mark_, x, g);
         const double w = weight(x);
-        if (w > 0) R.push_back(Item{w, Stats::norm(laplacian(x, st_.point(x))), x});
+        if (w > 0) R.push_back(Item{w, norm(laplacian(x, st_.point(x))), x});
       };
       for (vertex_descriptor v : S) {
         add(v);
@@ -226,20 +228,17 @@ public:
       M.clear();
       for (const Item& r : R) M.push_back(r.v);
       if (M.empty()) break;
-      st_.before_local_edit(M);
-      using Point = typename boost::property_traits<VPM>::value_type;
-      for (const Item& r : R) {
-        const vertex_descriptor v = r.v;
+      std::size_t k = 0;
+      ops_.move_vertices_in_order(M, [&](vertex_descriptor v) {
         const Vec p = st_.point(v);
         const Vec L = laplacian(v, p);
-        const double w = r.w;
-        put(vpm_, v, Point(p[0] + w * L[0], p[1] + w * L[1], p[2] + w * L[2]));
+        const double w = R[k++].w;
         if (get(moved_, v) != 1) {
           put(moved_, v, 1);
           ++c_.vertices_relaxed;
         }
-      }
-      st_.after_local_edit(M);
+        return Vec{{p[0] + w * L[0], p[1] + w * L[1], p[2] + w * L[2]}};
+      });
       ++c_.iterations;
       S.clear();
       for (vertex_descriptor v : W)
@@ -297,8 +296,8 @@ class Spike_remover
   using Hmark =
       typename boost::property_map<Mesh, CGAL::dynamic_halfedge_property_t<std::uint32_t>>::type;
 
+  Local_operations<Mesh, VPM>& ops_;
   Mesh& tm_;
-  Stats& st_;
   const Spike_settings& s_;
   Removal_counts& c_;
   Spike_detector<Mesh, VPM> det_;
@@ -309,12 +308,14 @@ class Spike_remover
   std::vector<vertex_descriptor> region_; // surviving vertices next to removed faces
 
 public:
-  Spike_remover(Mesh& tm, Stats& st, const Spike_settings& s, Removal_counts& c)
-    : tm_(tm), st_(st), s_(s), c_(c), det_(st, s),
-      vmark_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm)),
-      alive_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm)),
-      fmark_(get(CGAL::dynamic_face_property_t<std::uint32_t>(), tm)),
-      hmark_(get(CGAL::dynamic_halfedge_property_t<std::uint32_t>(), tm))
+  // `ops` keeps `st` current (Local_operations::keep_current).
+  Spike_remover(Local_operations<Mesh, VPM>& ops, const Stats& st, const Spike_settings& s,
+                Removal_counts& c)
+    : ops_(ops), tm_(ops.mesh()), s_(s), c_(c), det_(st, s),
+      vmark_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm_)),
+      alive_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm_)),
+      fmark_(get(CGAL::dynamic_face_property_t<std::uint32_t>(), tm_)),
+      hmark_(get(CGAL::dynamic_halfedge_property_t<std::uint32_t>(), tm_))
   {}
 
   void run(const std::vector<vertex_descriptor>& spiked)
@@ -333,9 +334,8 @@ public:
             F.push_back(f);
           }
         }
-      remove_faces(F, g);
       c_.faces_removed += F.size();
-      fix_pinched();
+      remove_faces(F);
       // vertices still spiked next to the removal (new border vertices only)
       S.clear();
       for (vertex_descriptor v : live_region())
@@ -358,82 +358,21 @@ public:
   }
 
 private:
-  // Removes the faces F (all marked with fmark == g); keeps statistics current.
-  void remove_faces(const std::vector<face_descriptor>& F, std::uint32_t g)
+  // Removes the faces F and, where a vertex would be pinched (two fans), its
+  // smaller fans (counted as dangling faces).
+  void remove_faces(std::vector<face_descriptor>& F)
   {
-    std::vector<vertex_descriptor> B, A;
-    const std::uint32_t vg = ++gen_;
-    for (face_descriptor f : F)
-      for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, tm_), tm_)) {
-        vertex_descriptor x = target(h, tm_);
-        if (get(vmark_, x) == vg) continue;
-        put(vmark_, x, vg);
-        B.push_back(x);
-      }
-    // survivors: vertices with a face outside F (decided before removal)
-    for (vertex_descriptor x : B) {
-      bool keeps = false;
-      for (halfedge_descriptor h : CGAL::halfedges_around_target(x, tm_)) {
-        face_descriptor f = face(h, tm_);
-        if (f != GT::null_face() && get(fmark_, f) != g) {
-          keeps = true;
-          break;
-        }
-      }
-      put(alive_, x, keeps ? 1u : 0u);
-      if (keeps) A.push_back(x);
-    }
-    c_.vertices_removed += B.size() - A.size(); // remove_face drops isolated vertices
-    st_.before_local_edit(B);
-    for (face_descriptor f : F) CGAL::Euler::remove_face(halfedge(f, tm_), tm_);
-    st_.after_local_edit(A);
-    region_.insert(region_.end(), A.begin(), A.end());
-  }
-
-  // A removal can leave a vertex with two fans (two border halfedges around it):
-  // the smaller fans are removed as dangling faces until every vertex is manifold.
-  void fix_pinched()
-  {
-    for (int guard = 0; guard < 100; ++guard) {
-      std::vector<face_descriptor> F;
-      const std::uint32_t g = ++gen_;
-      for (vertex_descriptor v : live_region()) {
-        std::vector<halfedge_descriptor> around;
-        for (halfedge_descriptor h : CGAL::halfedges_around_target(v, tm_)) around.push_back(h);
-        std::size_t borders = 0, first = 0;
-        for (std::size_t i = 0; i < around.size(); ++i)
-          if (is_border(around[i], tm_)) {
-            if (borders == 0) first = i;
-            ++borders;
-          }
-        if (borders < 2) continue;
-        ++c_.pinched_vertices_fixed;
-        // fans: runs of non-border halfedges after each border one
-        std::vector<std::vector<face_descriptor>> fans;
-        for (std::size_t k = 1; k <= around.size(); ++k) {
-          halfedge_descriptor h = around[(first + k) % around.size()];
-          if (is_border(h, tm_)) {
-            fans.emplace_back();
-            continue;
-          }
-          if (fans.empty()) fans.emplace_back();
-          fans.back().push_back(face(h, tm_));
-        }
-        std::size_t keep = 0;
-        for (std::size_t i = 1; i < fans.size(); ++i)
-          if (fans[i].size() > fans[keep].size()) keep = i;
-        for (std::size_t i = 0; i < fans.size(); ++i)
-          if (i != keep)
-            for (face_descriptor f : fans[i])
-              if (get(fmark_, f) != g) {
-                put(fmark_, f, g);
-                F.push_back(f);
-              }
-      }
-      if (F.empty()) return;
-      remove_faces(F, g);
-      c_.dangling_faces_removed += F.size();
-    }
+    std::vector<vertex_descriptor> survivors, gone;
+    const std::size_t asked = F.size();
+    const std::size_t pinches = ops_.counts.pinches_resolved;
+    ops_.remove_faces_without_pinches(F, &survivors, &gone);
+    c_.dangling_faces_removed += F.size() - asked;
+    c_.pinched_vertices_fixed += ops_.counts.pinches_resolved - pinches;
+    c_.vertices_removed += gone.size();
+    // only the mark of a removed vertex is read from now on
+    for (vertex_descriptor x : gone) put(alive_, x, 0u);
+    for (vertex_descriptor x : survivors) put(alive_, x, 1u);
+    region_.insert(region_.end(), survivors.begin(), survivors.end());
   }
 
   void count_loops()

@@ -1,0 +1,198 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+#ifndef MREPAIR_CLEANING_RESULTS_H
+#define MREPAIR_CLEANING_RESULTS_H
+
+#include <mrepair/report.h>
+#include <mrepair/status.h>
+
+#include <cstddef>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+/// \file cleaning_results.h
+/// What the scan-cleaning steps report. Each counter is written once, in its
+/// struct's `for_each_field` list: the report keys and the pipeline's totals
+/// over iterations are generated from that list.
+
+namespace mrepair {
+
+/// how a field adds up over the iterations of `clean_scan_mesh()`.
+namespace totals {
+struct sum {};   ///< added
+struct last {};  ///< the value of the last run
+struct any {};   ///< true once true
+}  // namespace totals
+
+namespace internal {
+
+/// writes every field of `x` (in list order) into `r`.
+template <typename Result>
+void report_fields(const Result& x, Report& r)
+{
+  Result::for_each_field([&](const char* name, auto member, auto) { r.add(name, x.*member); });
+}
+
+/// adds the run `b` to the totals `a`, field by field as the list says.
+template <typename Result>
+void add_totals(Result& a, const Result& b)
+{
+  Result::for_each_field([&](const char*, auto member, auto how) {
+    using How = decltype(how);
+    if constexpr (std::is_same<How, totals::sum>::value)
+      a.*member += b.*member;
+    else if constexpr (std::is_same<How, totals::any>::value)
+      a.*member = a.*member || b.*member;
+    else
+      a.*member = b.*member;
+  });
+}
+
+}  // namespace internal
+
+/// \ingroup mrepair_clean
+/// what `remove_small_components()` did.
+struct Small_components_result
+{
+  Status status = Status::ok;
+  std::size_t components_removed = 0;
+  std::size_t faces_removed = 0;
+  std::size_t vertices_removed = 0;
+  /// small by face count but not small next to the largest component: kept
+  std::size_t components_kept_relative = 0;
+  /// the largest component was among the small candidates and was kept
+  bool kept_largest = false;
+
+  template <typename F>
+  static void for_each_field(F&& f)
+  {
+    using R = Small_components_result;
+    f("status", &R::status, totals::last{});
+    f("components_removed", &R::components_removed, totals::sum{});
+    f("faces_removed", &R::faces_removed, totals::sum{});
+    f("vertices_removed", &R::vertices_removed, totals::sum{});
+    f("components_kept_relative", &R::components_kept_relative, totals::sum{});
+  }
+
+  void to_report(Report& r) const
+  {
+    internal::report_fields(*this, r);
+    if (kept_largest) r.add("kept_largest_small_component", true);
+  }
+};
+
+/// \ingroup mrepair_clean
+/// what `clean_boundaries()` did.
+struct Boundary_cleaning_result
+{
+  Status status = Status::ok;
+  std::size_t boundary_vertices = 0;     ///< boundary vertices found at the start
+  std::size_t region_vertices = 0;       ///< vertices of the confidence region
+  std::size_t rounds = 0;                ///< removal rounds run
+  std::size_t bad_vertices_removed = 0;  ///< bad boundary vertices whose faces were removed
+  std::size_t bad_vertices_left = 0;     ///< bad boundary vertices left when the round cap hit
+  std::size_t faces_removed = 0;         ///< faces removed with bad vertices (pinch fixes included)
+  std::size_t pinch_faces_removed = 0;   ///< of which: smaller fans removed at would-be pinched vertices
+  std::size_t components_removed = 0;    ///< small components removed in the region
+  std::size_t component_faces_removed = 0;
+  std::size_t vertices_smoothed = 0;
+  std::size_t loops = 0;                 ///< boundary loops found at the start
+  std::size_t jagged_loops = 0;          ///< of which jagged: eroded along their length
+  std::size_t tooth_vertices = 0;        ///< vertices of local teeth on the other loops: eroded there
+  std::size_t loops_at_budget = 0;       ///< loops whose erosion stopped at `boundary_erosion_share`
+
+  template <typename F>
+  static void for_each_field(F&& f)
+  {
+    using R = Boundary_cleaning_result;
+    f("status", &R::status, totals::last{});
+    f("boundary_vertices", &R::boundary_vertices, totals::last{});
+    f("region_vertices", &R::region_vertices, totals::last{});
+    f("rounds", &R::rounds, totals::sum{});
+    f("bad_vertices_removed", &R::bad_vertices_removed, totals::sum{});
+    f("bad_vertices_left", &R::bad_vertices_left, totals::last{});
+    f("faces_removed", &R::faces_removed, totals::sum{});
+    f("pinch_faces_removed", &R::pinch_faces_removed, totals::sum{});
+    f("components_removed", &R::components_removed, totals::sum{});
+    f("component_faces_removed", &R::component_faces_removed, totals::sum{});
+    f("vertices_smoothed", &R::vertices_smoothed, totals::sum{});
+    f("loops", &R::loops, totals::last{});
+    f("jagged_loops", &R::jagged_loops, totals::last{});
+    f("tooth_vertices", &R::tooth_vertices, totals::sum{});
+    f("loops_at_budget", &R::loops_at_budget, totals::sum{});
+  }
+
+  void to_report(Report& r) const { internal::report_fields(*this, r); }
+};
+
+/// \ingroup mrepair_clean
+/// a small hole left open by `fill_small_holes()`.
+struct Open_hole
+{
+  std::size_t vertices = 0;  ///< boundary loop size when it was given up
+  std::string reason;        ///< "triangulation_failed", "grew_too_large", "non_finite"
+};
+
+/// \ingroup mrepair_clean
+/// what `fill_small_holes()` did.
+struct Hole_filling_result
+{
+  Status status = Status::ok;
+  std::size_t holes_found = 0;      ///< boundary loops with fewer than max_hole_vertices vertices
+  std::size_t holes_filled = 0;     ///< holes closed (after enlargement or not)
+  std::size_t holes_too_large = 0;  ///< loops at or above the limit, left open on purpose
+  std::size_t sheet_borders = 0;    ///< small loops left open because they border a sheet (cap too large for its component)
+  std::size_t aborted_fills = 0;    ///< triangulations that failed (complex edge, degenerate loop)
+  std::size_t enlargements = 0;     ///< 1-ring enlargements of aborted holes
+  std::size_t enlargement_faces_removed = 0;
+  std::size_t faces_added = 0;      ///< net faces of the patches (after refinement)
+  std::size_t vertices_added = 0;   ///< patch interior vertices
+  std::vector<Open_hole> open_holes;  ///< small holes left open, with the reason (of the last run in totals)
+
+  template <typename F>
+  static void for_each_field(F&& f)
+  {
+    using R = Hole_filling_result;
+    f("status", &R::status, totals::last{});
+    f("holes_found", &R::holes_found, totals::sum{});
+    f("holes_filled", &R::holes_filled, totals::sum{});
+    f("holes_too_large", &R::holes_too_large, totals::last{});
+    f("sheet_borders", &R::sheet_borders, totals::last{});
+    f("aborted_fills", &R::aborted_fills, totals::sum{});
+    f("enlargements", &R::enlargements, totals::sum{});
+    f("enlargement_faces_removed", &R::enlargement_faces_removed, totals::sum{});
+    f("faces_added", &R::faces_added, totals::sum{});
+    f("vertices_added", &R::vertices_added, totals::sum{});
+  }
+
+  void to_report(Report& r) const
+  {
+    internal::report_fields(*this, r);
+    r.add("holes_left_open", open_holes.size());
+    std::size_t failed = 0, grew = 0, nonfinite = 0;
+    for (const Open_hole& h : open_holes) {
+      if (h.reason == "triangulation_failed") ++failed;
+      else if (h.reason == "grew_too_large" || h.reason == "component_too_small") ++grew;
+      else ++nonfinite;
+    }
+    if (!open_holes.empty()) {
+      Report& s = r.section("left_open");
+      s.add("triangulation_failed", failed);
+      s.add("grew_too_large", grew);
+      s.add("non_finite", nonfinite);
+    }
+  }
+};
+
+namespace internal {
+/// totals of hole filling: the open holes are those of the last run.
+inline void add_totals(Hole_filling_result& a, const Hole_filling_result& b)
+{
+  add_totals<Hole_filling_result>(a, b);
+  a.open_holes = b.open_holes;
+}
+}  // namespace internal
+
+}  // namespace mrepair
+
+#endif  // MREPAIR_CLEANING_RESULTS_H
