@@ -4,6 +4,7 @@
 
 #include <mrepair/inspection_report.h>
 #include <mrepair/internal/inspect/analysis.h>
+#include <mrepair/internal/inspect/finish.h>
 #include <mrepair/internal/inspect/mesh_arrays.h>
 #include <mrepair/internal/inspect/surface_arrays.h>
 #include <mrepair/internal/scan_clean/spike_criterion.h>
@@ -15,7 +16,6 @@
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/tags.h>
-
 
 #include <cmath>
 #include <string>
@@ -66,48 +66,6 @@ bool read_inspect_thresholds(const NamedParameters& np, Inspect_thresholds& t, s
   if (std::isnan(t.t_junction_tolerance) || std::isinf(t.t_junction_tolerance))
     return bad("t_junction_tolerance");
   return true;
-}
-
-// Counts self-intersecting pairs when asked and possible: every face a
-// triangle, every vertex of a face finite.
-template <typename VisitorHandle>
-void count_self_intersections(const Surface_analysis& analysis, bool asked, VisitorHandle& visitor,
-                              Inspection_report& r)
-{
-  if (!asked || analysis.non_finite_referenced != 0 || r.faces == 0 || r.triangles != r.faces) return;
-  Phase_scope<VisitorHandle> phase(visitor, "inspect: self-intersections");
-  r.self_intersecting_pairs = analysis.self_intersecting_pairs();
-  r.self_intersections_counted = true;
-}
-
-inline void copy_thresholds(const Inspect_thresholds& t, Inspection_report& r)
-{
-  r.spike_angle = t.spike_angle;
-  r.spike_height_factor = t.spike_height_factor;
-  r.zero_edge_factor = t.zero_edge_factor;
-  r.skinny_edge_factor = t.skinny_edge_factor;
-  r.skinny_angle = t.skinny_angle;
-  r.small_angle = t.small_angle;
-  r.max_hole_vertices = t.max_hole_vertices;
-  r.min_component_faces = t.min_component_faces;
-  r.t_junction_tolerance = t.t_junction_tolerance;
-}
-
-// Status of a filled report: the worst input problem found.
-inline void finish_status(Inspection_report& r, std::size_t non_finite_referenced)
-{
-  if (r.vertices == 0 || r.faces == 0) {
-    r.status = Status::empty_input;
-    r.message = r.vertices == 0 ? "no vertices" : "no usable faces";
-  } else if (r.invalid_polygons > 0) {
-    r.status = Status::invalid_index;
-    r.message = std::to_string(r.invalid_polygons) +
-                " polygons with an invalid index or fewer than 3 vertices were left out";
-  } else if (r.non_finite_vertices > 0) {
-    r.status = Status::non_finite_input;
-    r.message = std::to_string(r.non_finite_vertices) + " vertices have non-finite coordinates" +
-                (non_finite_referenced ? " (faces on them left out of the geometric figures)" : "");
-  }
 }
 
 } // namespace internal

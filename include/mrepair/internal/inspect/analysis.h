@@ -7,6 +7,7 @@
 #include <mrepair/internal/inspect/self_intersections.h>
 #include <mrepair/internal/inspect/surface_arrays.h>
 #include <mrepair/internal/scan_clean/spike_criterion.h>
+#include <mrepair/internal/utility.h>
 
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -41,33 +42,6 @@ struct Inspect_thresholds
   std::size_t min_component_faces = 400;
   double t_junction_tolerance = -1;        // < 0: relative default
   double t_junction_relative = 1e-4;       // x bounding-box diagonal
-};
-
-constexpr double inspect_rad_to_deg = 57.295779513082320876798154814105;
-
-struct Union_find
-{
-  std::vector<Inspect_index> parent;
-  explicit Union_find(std::size_t n) : parent(n)
-  {
-    for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<Inspect_index>(i);
-  }
-  Inspect_index find(Inspect_index x)
-  {
-    while (parent[x] != x) {
-      parent[x] = parent[parent[x]];
-      x = parent[x];
-    }
-    return x;
-  }
-  void unite(Inspect_index x, Inspect_index y)
-  {
-    x = find(x);
-    y = find(y);
-    if (x == y) return;
-    if (x < y) std::swap(x, y);
-    parent[x] = y;
-  }
 };
 
 // Does all the counting that soups and meshes share, on flattened arrays.
@@ -302,9 +276,9 @@ private:
           const double d0 = -(u0[0] * u2[0] + u0[1] * u2[1] + u0[2] * u2[2]);
           const double d1 = -(u1[0] * u0[0] + u1[1] * u0[1] + u1[2] * u0[2]);
           const double d2 = -(u2[0] * u1[0] + u2[1] * u1[1] + u2[2] * u1[2]);
-          const double ang[3] = {std::atan2(len, d0) * inspect_rad_to_deg,
-                                 std::atan2(len, d1) * inspect_rad_to_deg,
-                                 std::atan2(len, d2) * inspect_rad_to_deg};
+          const double ang[3] = {std::atan2(len, d0) * degrees_per_radian,
+                                 std::atan2(len, d1) * degrees_per_radian,
+                                 std::atan2(len, d2) * degrees_per_radian};
           for (int i = 0; i < 3; ++i) {
             corner_angle_[c0 + i] = ang[i];
             s.min_angle = std::min(s.min_angle, ang[i]);
@@ -484,7 +458,7 @@ private:
         const double cr = std::sqrt(cx * cx + cy * cy + cz * cz);
         if ((n0[0] == 0 && n0[1] == 0 && n0[2] == 0) || (n1[0] == 0 && n1[1] == 0 && n1[2] == 0))
           continue;
-        const double ang = std::atan2(cr, dot) * inspect_rad_to_deg;
+        const double ang = std::atan2(cr, dot) * degrees_per_radian;
         edge_dihedral_[e] = ang;
         s.max_dihedral = std::max(s.max_dihedral, ang);
       }
@@ -565,7 +539,7 @@ private:
   {
     const std::size_t nv = a_.num_vertices;
     if (!(t_.spike_height_factor > 0)) return;
-    auto radians = [&](std::size_t v) { return max_dihedral_deg[v] / inspect_rad_to_deg; };
+    auto radians = [&](std::size_t v) { return max_dihedral_deg[v] / degrees_per_radian; };
     std::vector<Inspect_index> slot(nv, inspect_npos);
     std::vector<Inspect_index> candidates;
     for (std::size_t v = 0; v < nv; ++v) {
@@ -658,7 +632,7 @@ private:
   void components()
   {
     const std::size_t nf = a_.num_faces(), ne = a_.num_edges();
-    Union_find uf(nf);
+    Union_find<Inspect_index> uf(nf);
     for (std::size_t e = 0; e < ne; ++e) {
       const Inspect_index f0 = a_.corner_f[a_.edge_corners[a_.edge_off[e]]];
       for (Inspect_index i = a_.edge_off[e] + 1; i < a_.edge_off[e + 1]; ++i)
@@ -693,7 +667,7 @@ private:
     non_manifold_vertex_.assign(nv, 0);
     auto acc = chunked<std::size_t>(nv, [&](std::size_t b, std::size_t e, std::size_t& s) {
       std::vector<std::pair<Inspect_index, Inspect_index>> link; // (edge, local face)
-      std::vector<Inspect_index> parent;
+      Union_find<Inspect_index> fans;  // local faces of v joined through its edges
       for (std::size_t v = b; v < e; ++v) {
         const std::size_t k = off[v + 1] - off[v];
         if (k < 2) continue;
@@ -704,21 +678,11 @@ private:
           link.emplace_back(a_.corner_e[a_.prev_corner(c)], static_cast<Inspect_index>(i));
         }
         std::sort(link.begin(), link.end());
-        parent.resize(k);
-        for (std::size_t i = 0; i < k; ++i) parent[i] = static_cast<Inspect_index>(i);
-        auto find = [&](Inspect_index x) {
-          while (parent[x] != x) x = parent[x] = parent[parent[x]];
-          return x;
-        };
+        fans.reset(k);
         std::size_t groups = k;
-        for (std::size_t i = 1; i < link.size(); ++i) {
-          if (link[i].first != link[i - 1].first) continue;
-          Inspect_index x = find(link[i].second), y = find(link[i - 1].second);
-          if (x != y) {
-            parent[std::max(x, y)] = std::min(x, y);
+        for (std::size_t i = 1; i < link.size(); ++i)
+          if (link[i].first == link[i - 1].first && fans.unite(link[i].second, link[i - 1].second))
             --groups;
-          }
-        }
         if (groups > 1) {
           non_manifold_vertex_[v] = 1;
           ++s;
@@ -741,7 +705,7 @@ private:
   void soup_loops()
   {
     const std::size_t nv = a_.num_vertices, ne = a_.num_edges();
-    Union_find uf(nv);
+    Union_find<Inspect_index> uf(nv);
     for (std::size_t e = 0; e < ne; ++e)
       if (a_.edge_off[e + 1] - a_.edge_off[e] == 1) uf.unite(a_.edge_v[2 * e], a_.edge_v[2 * e + 1]);
     std::vector<Inspect_index> size(nv, 0);

@@ -2,33 +2,17 @@
 #ifndef MREPAIR_INTERNAL_INSPECT_PARALLEL_H
 #define MREPAIR_INTERNAL_INSPECT_PARALLEL_H
 
+// The reproducible chunked reduction and the prefix sum of the inspection;
+// the plain loop is `parallel_for_index` of utility.h.
+
+#include <mrepair/internal/utility.h>
+
 #include <algorithm>
 #include <cstddef>
 #include <vector>
 
-#ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#endif
-
 namespace mrepair {
 namespace internal {
-
-// Calls f(i) for i in [0,n), in parallel with TBB when the range is worth it.
-template <typename F>
-void parallel_for_index(std::size_t n, std::size_t grain, const F& f)
-{
-#ifdef CGAL_LINKED_WITH_TBB
-  if (n > grain) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
-                      });
-    return;
-  }
-#endif
-  for (std::size_t i = 0; i < n; ++i) f(i);
-}
 
 // Splits [0,n) into a fixed number of chunks (independent of the thread count,
 // so that floating-point sums are reproducible), runs f(begin, end, acc) on
