@@ -35,6 +35,20 @@ double coordinate(const Point& p, int d)
   return CGAL::to_double(d == 0 ? p.x() : (d == 1 ? p.y() : p.z()));
 }
 
+/// runs `fill()`; false (and `r` says why) when memory ran out.
+template <typename Fill>
+bool fill_or_report_oom(const std::string& path, Io_result& r, const Fill& fill)
+{
+  try {
+    fill();
+  } catch (const std::bad_alloc&) {
+    r.status = Status::io_error;
+    r.message = path + ": out of memory";
+    return false;
+  }
+  return true;
+}
+
 /// moves what `raw` holds into `points` and `polygons` (empty on entry).
 template <class Point, class Polygon>
 void raw_to_soup(const std::string& path, Raw_soup& raw, std::vector<Point>& points,
@@ -67,7 +81,7 @@ template <class Point, class Polygon>
 bool soup_to_raw(const std::string& path, const std::vector<Point>& points,
                  const std::vector<Polygon>& polygons, Raw_soup& raw, Io_result& r)
 {
-  try {
+  return fill_or_report_oom(path, r, [&] {
     raw.xyz.reserve(3 * points.size());
     for (const Point& p : points)
       for (int d = 0; d < 3; ++d) raw.xyz.push_back(coordinate(p, d));
@@ -86,12 +100,7 @@ bool soup_to_raw(const std::string& path, const std::vector<Point>& points,
       }
       raw.starts.push_back(raw.indices.size());
     }
-  } catch (const std::bad_alloc&) {
-    r.status = Status::io_error;
-    r.message = path + ": out of memory";
-    return false;
-  }
-  return true;
+  });
 }
 
 /// copies `pmesh` into `raw`, vertices numbered consecutively in the order of
@@ -100,7 +109,7 @@ template <class PolygonMesh, class VertexPointMap, class NamedParameters>
 bool mesh_to_raw(const std::string& path, const PolygonMesh& pmesh, const VertexPointMap& vpm,
                  const NamedParameters& np, Raw_soup& raw, Io_result& r)
 {
-  try {
+  return fill_or_report_oom(path, r, [&] {
     // the mesh's own indices may have gaps (Surface_mesh with removed
     // elements): renumber them consecutively in the order of vertices(pmesh)
     auto vim = CGAL::get_initialized_vertex_index_map(pmesh, np);
@@ -124,12 +133,7 @@ bool mesh_to_raw(const std::string& path, const PolygonMesh& pmesh, const Vertex
         raw.indices.push_back(renum[static_cast<std::size_t>(get(vim, v))]);
       raw.starts.push_back(raw.indices.size());
     }
-  } catch (const std::bad_alloc&) {
-    r.status = Status::io_error;
-    r.message = path + ": out of memory";
-    return false;
-  }
-  return true;
+  });
 }
 
 /// builds `pmesh` (empty on entry) from a checked soup when it is a manifold,

@@ -13,9 +13,10 @@ namespace mrepair {
 namespace internal {
 namespace io {
 
-inline void write_off(Out_file& out, const Raw_soup& s)
+/// the body OFF and ASCII PLY share: a line "x y z" per point, then a line
+/// "n i1 ... in" per polygon.
+inline void write_points_and_counted_polygons(Out_file& out, const Raw_soup& s)
 {
-  out.put("OFF\n").put_uint(s.num_points()).put(' ').put_uint(s.num_polygons()).put(" 0\n");
   for (std::size_t i = 0; i < s.num_points(); ++i) {
     out.put_double(s.xyz[3 * i]).put(' ').put_double(s.xyz[3 * i + 1]).put(' ');
     out.put_double(s.xyz[3 * i + 2]).put('\n');
@@ -28,6 +29,12 @@ inline void write_off(Out_file& out, const Raw_soup& s)
     out.put('\n');
     out.maybe_flush();
   }
+}
+
+inline void write_off(Out_file& out, const Raw_soup& s)
+{
+  out.put("OFF\n").put_uint(s.num_points()).put(' ').put_uint(s.num_polygons()).put(" 0\n");
+  write_points_and_counted_polygons(out, s);
 }
 
 inline void write_obj(Out_file& out, const Raw_soup& s)
@@ -63,18 +70,7 @@ inline void write_ply(Out_file& out, const Raw_soup& s, bool binary)
   out.put("property list ").put(wide_count ? "uint" : "uchar").put(' ');
   out.put(wide_index ? "uint" : "int").put(" vertex_indices\nend_header\n");
   if (!binary) {
-    for (std::size_t i = 0; i < s.num_points(); ++i) {
-      out.put_double(s.xyz[3 * i]).put(' ').put_double(s.xyz[3 * i + 1]).put(' ');
-      out.put_double(s.xyz[3 * i + 2]).put('\n');
-      out.maybe_flush();
-    }
-    for (std::size_t f = 0; f < s.num_polygons(); ++f) {
-      out.put_uint(s.starts[f + 1] - s.starts[f]);
-      for (std::size_t k = s.starts[f]; k < s.starts[f + 1]; ++k)
-        out.put(' ').put_uint(static_cast<std::uint64_t>(s.indices[k]));
-      out.put('\n');
-      out.maybe_flush();
-    }
+    write_points_and_counted_polygons(out, s);
     return;
   }
   char tmp[24];
