@@ -38,6 +38,15 @@ struct Config
 /// the matrix every algorithm is tested on.
 using Mesh_configs = ::testing::Types<Config<K, Surface_mesh>, Config<K, Polyhedron>>;
 
+/// the exact-kernel row (issue 16): exact predicates and constructions.
+using EK = CGAL::Epeck;
+using Exact_surface_mesh = CGAL::Surface_mesh<EK::Point_3>;
+/// Applied to one suite only (test_exact_kernel.cpp: every algorithm once,
+/// compared with the Epick run), not added to `Mesh_configs`: each mesh type
+/// adds the compile time of a whole suite, and the library computes in
+/// doubles whatever the kernel, so one test per algorithm shows the support.
+using Exact_configs = ::testing::Types<Config<EK, Exact_surface_mesh>>;
+
 /// a soup: points and polygons (indices into points).
 struct Soup
 {
