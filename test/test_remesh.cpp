@@ -10,7 +10,6 @@
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/boost/graph/IO/OFF.h>
-#include <CGAL/boost/graph/graph_concepts.h>
 
 #include <fstream>
 
@@ -89,10 +88,84 @@ double one_sided_distance(const Mesh& out, const Mesh& ref)
 
 } // namespace
 
-TYPED_TEST(Remesh, concepts)
+namespace {
+
+// torus of radii R (of the centre circle) and r (of the tube), nu x nv quads
+// split in triangles, outward.
+Soup torus(double R, double r, std::size_t nu, std::size_t nv)
+{
+  Soup s;
+  for (std::size_t i = 0; i < nu; ++i)
+    for (std::size_t j = 0; j < nv; ++j) {
+      const double u = 2 * CGAL_PI * double(i) / double(nu), v = 2 * CGAL_PI * double(j) / double(nv);
+      s.points.emplace_back((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u),
+                            r * std::sin(v));
+    }
+  auto id = [&](std::size_t i, std::size_t j) { return (i % nu) * nv + (j % nv); };
+  for (std::size_t i = 0; i < nu; ++i)
+    for (std::size_t j = 0; j < nv; ++j) {
+      s.polygons.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.polygons.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return s;
+}
+
+template <class Mesh>
+std::size_t component_count(const Mesh& m)
+{
+  using face_descriptor = typename boost::graph_traits<Mesh>::face_descriptor;
+  std::set<face_descriptor> seen;
+  std::size_t n = 0;
+  for (face_descriptor f : faces(m)) {
+    if (!seen.insert(f).second) continue;
+    ++n;
+    std::vector<face_descriptor> stack{f};
+    while (!stack.empty()) {
+      face_descriptor g = stack.back();
+      stack.pop_back();
+      for (auto h : CGAL::halfedges_around_face(halfedge(g, m), m)) {
+        auto o = opposite(h, m);
+        if (!is_border(o, m) && seen.insert(face(o, m)).second) stack.push_back(face(o, m));
+      }
+    }
+  }
+  return n;
+}
+
+} // namespace
+
+// Remeshing changes the sampling, never the shape's topology: a torus (no
+// feature, every dihedral angle under 23 degrees) refined to a third of its
+// edge length stays one closed surface of genus 1 (V - E + F = 0), and every
+// vertex stays on the input, within the input's chord error of the true torus.
+TYPED_TEST(Remesh, torus_keeps_its_genus_and_stays_on_the_surface)
 {
   using Mesh = typename TypeParam::Mesh;
-  BOOST_CONCEPT_ASSERT((CGAL::concepts::MutableFaceGraph<Mesh>));
+  const double R = 2, r = 0.7;
+  Mesh m = to_mesh<Mesh>(torus(R, r, 32, 16));  // edges 0.25 to 0.53
+  ASSERT_EQ(vertices(m).size() + faces(m).size(), edges(m).size());
+  const std::size_t f0 = face_count(m);
+  auto res = mrepair::isotropic_remesh(m, 0.15, CGAL::parameters::number_of_iterations(3));
+  ASSERT_EQ(res.status, mrepair::Status::ok) << res.message;
+  expect_valid(m);
+  EXPECT_TRUE(CGAL::is_closed(m));
+  EXPECT_EQ(res.feature_edges, 0u);
+  EXPECT_GT(face_count(m), 4 * f0);
+  EXPECT_EQ(res.faces_after, face_count(m));
+  const long long chi = static_cast<long long>(vertices(m).size()) -
+                        static_cast<long long>(edges(m).size()) +
+                        static_cast<long long>(faces(m).size());
+  EXPECT_EQ(chi, 0) << "genus changed";
+  EXPECT_EQ(component_count(m), 1u);
+  // chord error of the input: 2.7 (1 - cos(pi/32)) + 0.7 (1 - cos(pi/16)) < 0.027
+  double worst = 0;
+  for (auto v : vertices(m)) {
+    const Point p = pt(m, v);
+    const double d = std::hypot(std::hypot(p.x(), p.y()) - R, p.z()) - r;
+    worst = (std::max)(worst, std::abs(d));
+  }
+  EXPECT_LT(worst, 0.03);
+  EXPECT_NEAR(mean_edge_length(m), 0.15, 0.02);
 }
 
 // A unit cube keeps its 12 sharp edges as 12 polylines between its 8 corners.
