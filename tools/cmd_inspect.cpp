@@ -5,6 +5,7 @@
 // halfedge cycles).
 #include "cli.h"
 
+#include <mrepair/definitions.h>
 #include <mrepair/inspect.h>
 #include <mrepair/io.h>
 
@@ -52,10 +53,10 @@ int run(int argc, char** argv)
     cli::print_help(command, options);
     return 0;
   }
-  const double spike = args.get_double("spike-angle", 100.0);
+  const double spike = args.get_double("spike-angle", mrepair::defaults::spike_angle);
   if (spike < 0 || spike > 180) throw cli::Usage_error("--spike-angle expects degrees in [0, 180]");
-  const std::size_t hole = static_cast<std::size_t>(non_negative(args, "small-hole", 100));
-  const std::size_t comp = static_cast<std::size_t>(non_negative(args, "small-component", 400));
+  const std::size_t hole = static_cast<std::size_t>(non_negative(args, "small-hole", static_cast<long long>(mrepair::defaults::max_hole_vertices)));
+  const std::size_t comp = static_cast<std::size_t>(non_negative(args, "small-component", static_cast<long long>(mrepair::defaults::min_component_faces)));
   const double tol = args.get_double("t-junction-tolerance", -1.0); // < 0: relative default
   if (args.has("t-junction-tolerance") && tol < 0)
     throw cli::Usage_error("--t-junction-tolerance expects a non-negative distance");

@@ -62,7 +62,9 @@ struct Near_degenerate_criterion
 {
   double zero_edge_factor = defaults::zero_edge_factor;
   double skinny_edge_factor = defaults::skinny_edge_factor;
-  double skinny_angle = to_radians(defaults::skinny_angle);  ///< radians
+  /// in the unit of the opposite angles given to the tests: radians in the
+  /// fixers (halfedge statistics), degrees in `inspect()` (its corner arrays)
+  double skinny_angle = to_radians(defaults::skinny_angle);
 
   bool is_zero_edge(double length, double global_mean) const
   {
@@ -72,7 +74,7 @@ struct Near_degenerate_criterion
   {
     return length < skinny_edge_factor * local_mean;
   }
-  /// `opposite_angle` in radians: the corner facing the edge in one face.
+  /// `opposite_angle`: the corner facing the edge in one face.
   bool edge_makes_face_near_degenerate(double length, double opposite_angle, double global_mean,
                                        double local_mean) const
   {

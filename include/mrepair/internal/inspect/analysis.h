@@ -2,6 +2,7 @@
 #ifndef MREPAIR_INTERNAL_INSPECT_ANALYSIS_H
 #define MREPAIR_INTERNAL_INSPECT_ANALYSIS_H
 
+#include <mrepair/definitions.h>
 #include <mrepair/inspection_report.h>
 #include <mrepair/internal/inspect/parallel.h>
 #include <mrepair/internal/inspect/self_intersections.h>
@@ -32,14 +33,14 @@ namespace internal {
 // Thresholds of the inspection, defaults resolved (see inspect.h).
 struct Inspect_thresholds
 {
-  double spike_angle = 100.0;
+  double spike_angle = defaults::spike_angle;
   double spike_height_factor = default_spike_height_factor;
-  double zero_edge_factor = 0.1;
-  double skinny_edge_factor = 0.25;
-  double skinny_angle = 10.0;
+  double zero_edge_factor = defaults::zero_edge_factor;
+  double skinny_edge_factor = defaults::skinny_edge_factor;
+  double skinny_angle = defaults::skinny_angle;  // degrees
   double small_angle = 30.0;
-  std::size_t max_hole_vertices = 100;
-  std::size_t min_component_faces = 400;
+  std::size_t max_hole_vertices = defaults::max_hole_vertices;
+  std::size_t min_component_faces = defaults::min_component_faces;
   double t_junction_tolerance = -1;        // < 0: relative default
   double t_junction_relative = 1e-4;       // x bounding-box diagonal
 };
@@ -586,12 +587,17 @@ private:
   void near_degenerate()
   {
     if (std::isnan(r_.edge_length_mean)) return;
-    const double zero_len = t_.zero_edge_factor * r_.edge_length_mean;
-    auto zero = [&](std::size_t e) { return edge_len_[e] < zero_len; };
-    auto skinny = [&](std::size_t e) {
-      const double le = 0.5 * (vertex_mean_len_[a_.edge_v[2 * e]] + vertex_mean_len_[a_.edge_v[2 * e + 1]]);
-      return edge_len_[e] < t_.skinny_edge_factor * le;
+    // the criterion of definitions.h; corner angles here are in degrees
+    Near_degenerate_criterion crit;
+    crit.zero_edge_factor = t_.zero_edge_factor;
+    crit.skinny_edge_factor = t_.skinny_edge_factor;
+    crit.skinny_angle = t_.skinny_angle;
+    const double mean = r_.edge_length_mean;
+    auto local_mean = [&](std::size_t e) {
+      return 0.5 * (vertex_mean_len_[a_.edge_v[2 * e]] + vertex_mean_len_[a_.edge_v[2 * e + 1]]);
     };
+    auto zero = [&](std::size_t e) { return crit.is_zero_edge(edge_len_[e], mean); };
+    auto skinny = [&](std::size_t e) { return crit.is_skinny_edge(edge_len_[e], local_mean(e)); };
     const std::size_t nf = a_.num_faces(), ne = a_.num_edges();
     std::vector<unsigned char> small_opposite(ne, 0);
     auto acc = chunked<std::size_t>(nf, [&](std::size_t b, std::size_t e_end, std::size_t& s) {
@@ -602,7 +608,7 @@ private:
           const Inspect_index e = a_.corner_e[c0 + i];
           if (e == inspect_npos) continue;
           const double opposite = corner_angle_[c0 + (i + 2) % 3];
-          if (zero(e) || (opposite < t_.skinny_angle && skinny(e))) {
+          if (crit.edge_makes_face_near_degenerate(edge_len_[e], opposite, mean, local_mean(e))) {
             ++s;
             break;
           }
