@@ -18,6 +18,8 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -441,6 +443,91 @@ TYPED_TEST(Keeps_model, input_kind_is_decided_and_can_be_forced)
 
 // The whole command on the pentagon OBJ that hung, and the face accounting
 // of its report.
+namespace {
+
+// the faces of `m` as sorted triples of points (rotated to start at the
+// smallest): equal for two meshes with the same faces, whatever the indices.
+template <class Mesh>
+std::vector<std::array<std::array<double, 3>, 3>> face_signature(const Mesh& m)
+{
+  std::vector<std::array<std::array<double, 3>, 3>> out;
+  for (auto f : faces(m)) {
+    std::array<std::array<double, 3>, 3> t{};
+    int i = 0;
+    for (auto v : CGAL::vertices_around_face(halfedge(f, m), m)) {
+      const Point p = get(CGAL::vertex_point, m, v);
+      if (i < 3) t[i] = {p.x(), p.y(), p.z()};
+      ++i;
+    }
+    EXPECT_EQ(i, 3);
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    out.push_back(t);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+} // namespace
+
+// On Surface_mesh the pipeline reserves room for its hole fills before the
+// statistics' property maps exist, so that fills do not reallocate them; fills
+// that need more grow every array (maps included) while the steps hold them.
+// Neither may change a result: a mesh whose capacity already holds every fill
+// and one without any spare capacity, whose fills outgrow the reserved room,
+// come out identical, face for face and figure for figure.
+TEST(Keeps_model_reserve, reserved_room_changes_no_result)
+{
+  // a 60 x 60 sheet with three 16 x 16 holes (64-vertex loops): 5,664 faces,
+  // about 1,500 faces of fills
+  Soup g = grid(60, 60), s;
+  s.points = g.points;
+  auto in_hole = [&](const Polygon& q) {
+    bool all = true;
+    for (std::size_t i : q) {
+      const Point& p = g.points[i];
+      const bool x = (p.x() >= 3 && p.x() <= 19) || (p.x() >= 22 && p.x() <= 38) ||
+                     (p.x() >= 41 && p.x() <= 57);
+      all = all && x && p.y() >= 22 && p.y() <= 38;
+    }
+    return all;
+  };
+  for (const Polygon& q : g.polygons)
+    if (!in_hole(q)) s.polygons.push_back(q);
+  // the points inside the holes stay isolated in the soup: drop them
+  Surface_mesh built = to_mesh<Surface_mesh>(s);
+  std::vector<Surface_mesh::Vertex_index> isolated;
+  for (auto v : vertices(built))
+    if (built.is_isolated(v)) isolated.push_back(v);
+  for (auto v : isolated) remove_vertex(v, built);
+  built.collect_garbage();
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(built));
+  const std::size_t f0 = face_count(built);
+  ASSERT_EQ(f0, 7200u - 3 * 512u);
+
+  Surface_mesh tight(built);  // a copy: no spare capacity
+  Surface_mesh roomy(built);
+  roomy.reserve(roomy.number_of_vertices() + 20000, roomy.number_of_edges() + 60000,
+                roomy.number_of_faces() + 40000);
+  mrepair::Scan_cleaning_result rt = mrepair::clean_scan_mesh(tight, MP::input_profile(Input_profile::scan));
+  mrepair::Scan_cleaning_result rr = mrepair::clean_scan_mesh(roomy, MP::input_profile(Input_profile::scan));
+  ASSERT_EQ(rt.status, Status::ok) << rt.message;
+  EXPECT_EQ(rt.holes.holes_filled, 3u);
+  // what makes the case: the fills outgrow the room reserved up front
+  // (clean_scan_mesh.h: 1/32 of the faces + 1024), so the arrays grow mid-run
+  ASSERT_GT(rt.holes.faces_added, f0 / 32 + 1024);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(tight));
+  EXPECT_EQ(border_edges(tight), 240u);  // the sheet's outline only
+  EXPECT_EQ(rt.faces_after, face_count(tight));
+  EXPECT_TRUE(rt.faces_reconcile());
+
+  rt.seconds = rr.seconds = 0;  // the only figures allowed to differ
+  for (auto* r : {&rt, &rr})
+    for (auto& step : r->steps) step.seconds = 0;
+  EXPECT_EQ(mrepair::make_report(rt).to_json(), mrepair::make_report(rr).to_json());
+  EXPECT_EQ(vertices(tight).size(), vertices(roomy).size());
+  EXPECT_TRUE(face_signature(tight) == face_signature(roomy));
+}
+
 TEST(Keeps_model_cli, pentagon_obj_terminates_and_accounts_for_every_face)
 {
 #ifdef MREPAIR_CLI
