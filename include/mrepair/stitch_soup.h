@@ -102,21 +102,11 @@ Soup_repair_result clean_polygon_soup(PointRange& points, PolygonRange& polygons
   if (!internal::read_soup_options(np, o, r)) return r;
   internal::Visitor_handle<NamedParameters> vis(np);
   internal::Soup_repairer w(r, o);
-  {
-    internal::Phase_scope<internal::Visitor_handle<NamedParameters>> phase(vis, "clean");
-    if (!w.load(points, polygons)) return r;
-  }
-  if (vis.stop_requested()) {
-    r.status = Status::cancelled;
-    return r;
-  }
-  r.faces_out = w.T.size();
-  r.vertices_out = w.P.size();
+  if (!internal::load_and_clean_soup(w, points, polygons, vis, r)) return r;
   internal::finish_soup_status(r);
   internal::write_back_soup(w, points, polygons);
   return r;
 }
-
 
 /// \ingroup mrepair_soup
 /// turns a polygon soup into a consistently oriented manifold triangle soup, in

@@ -19,6 +19,31 @@
 namespace mrepair {
 namespace internal {
 
+// The "clean" phase: loads the soup into `w` (merging, dropping, triangulating).
+template <class PointRange, class PolygonRange, class VisitorHandle>
+bool load_soup(Soup_repairer& w, const PointRange& points, const PolygonRange& polygons,
+               VisitorHandle& vis)
+{
+  Phase_scope<VisitorHandle> phase(vis, "clean");
+  return w.load(points, polygons);
+}
+
+// The stages of `clean_polygon_soup`: load (clean) and count what is left,
+// unless cancelled. Returns false when `r` already holds the final status.
+template <class PointRange, class PolygonRange, class VisitorHandle>
+bool load_and_clean_soup(Soup_repairer& w, const PointRange& points,
+                         const PolygonRange& polygons, VisitorHandle& vis, Soup_repair_result& r)
+{
+  if (!load_soup(w, points, polygons, vis)) return false;
+  if (vis.stop_requested()) {
+    r.status = Status::cancelled;
+    return false;
+  }
+  r.faces_out = w.T.size();
+  r.vertices_out = w.P.size();
+  return true;
+}
+
 // The stages shared by the in-place and the mesh-building entry points: load
 // (clean), then cut, orient and stitch unless cancelled. Returns false when
 // `r` already holds the final status.
@@ -26,10 +51,7 @@ template <class PointRange, class PolygonRange, class VisitorHandle>
 bool load_and_repair_soup(Soup_repairer& w, const PointRange& points,
                           const PolygonRange& polygons, VisitorHandle& vis, Soup_repair_result& r)
 {
-  {
-    Phase_scope<VisitorHandle> phase(vis, "clean");
-    if (!w.load(points, polygons)) return false;
-  }
+  if (!load_soup(w, points, polygons, vis)) return false;
   if (vis.stop_requested() || !w.run_topology(vis)) {
     r.status = Status::cancelled;
     return false;
