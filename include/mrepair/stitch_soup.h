@@ -74,6 +74,23 @@ bool read_soup_options(const NamedParameters& np, Soup_repairer::Options& o, Sou
   return true;
 }
 
+// The in-place entry points: options, then `stages(w, vis, r)` (false when
+// `r` holds the final status), then the status and the triangles written back.
+template <class PointRange, class PolygonRange, class NamedParameters, class Stages>
+Soup_repair_result soup_in_place(PointRange& points, PolygonRange& polygons,
+                                 const NamedParameters& np, const Stages& stages)
+{
+  Soup_repair_result r;
+  Soup_repairer::Options o;
+  if (!read_soup_options(np, o, r)) return r;
+  Visitor_handle<NamedParameters> vis(np);
+  Soup_repairer w(r, o);
+  if (!stages(w, vis, r)) return r;
+  finish_soup_status(r);
+  write_back_soup(w, points, polygons);
+  return r;
+}
+
 } // namespace internal
 
 /// \ingroup mrepair_soup
@@ -97,15 +114,9 @@ template <class PointRange, class PolygonRange,
 Soup_repair_result clean_polygon_soup(PointRange& points, PolygonRange& polygons,
                                       const NamedParameters& np = CGAL::parameters::default_values())
 {
-  Soup_repair_result r;
-  internal::Soup_repairer::Options o;
-  if (!internal::read_soup_options(np, o, r)) return r;
-  internal::Visitor_handle<NamedParameters> vis(np);
-  internal::Soup_repairer w(r, o);
-  if (!internal::load_and_clean_soup(w, points, polygons, vis, r)) return r;
-  internal::finish_soup_status(r);
-  internal::write_back_soup(w, points, polygons);
-  return r;
+  return internal::soup_in_place(points, polygons, np, [&](auto& w, auto& vis, auto& r) {
+    return internal::load_and_clean_soup(w, points, polygons, vis, r);
+  });
 }
 
 /// \ingroup mrepair_soup
@@ -118,15 +129,9 @@ template <class PointRange, class PolygonRange,
 Soup_repair_result repair_polygon_soup_to_manifold(PointRange& points, PolygonRange& polygons,
                                                    const NamedParameters& np = CGAL::parameters::default_values())
 {
-  Soup_repair_result r;
-  internal::Soup_repairer::Options o;
-  if (!internal::read_soup_options(np, o, r)) return r;
-  internal::Visitor_handle<NamedParameters> vis(np);
-  internal::Soup_repairer w(r, o);
-  if (!internal::load_and_repair_soup(w, points, polygons, vis, r)) return r;
-  internal::finish_soup_status(r);
-  internal::write_back_soup(w, points, polygons);
-  return r;
+  return internal::soup_in_place(points, polygons, np, [&](auto& w, auto& vis, auto& r) {
+    return internal::load_and_repair_soup(w, points, polygons, vis, r);
+  });
 }
 
 /// \ingroup mrepair_soup
