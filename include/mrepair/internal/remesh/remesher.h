@@ -25,6 +25,7 @@
 #define MREPAIR_INTERNAL_REMESH_REMESHER_H
 
 #include <mrepair/internal/remesh/reference_surface.h>
+#include <mrepair/internal/utility.h>
 #include <mrepair/status.h>
 
 #include <CGAL/Surface_mesh.h>
@@ -33,11 +34,6 @@
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
 #include <CGAL/number_utils.h>
-
-#ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#endif
 
 #include <algorithm>
 #include <cmath>
@@ -755,16 +751,10 @@ public:
   template <typename F>
   void for_each_index(std::size_t n, const F& f)
   {
-#ifdef CGAL_LINKED_WITH_TBB
-    if (parallel_ && n > 2000) {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 512),
-                        [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
-                        });
-      return;
-    }
-#endif
-    for (std::size_t i = 0; i < n; ++i) f(i);
+    if (parallel_ && n > 2000)
+      parallel_for_index(n, 512, f);
+    else
+      for (std::size_t i = 0; i < n; ++i) f(i);
   }
 
   Vec3 vertex_normal(vertex_descriptor v) const
