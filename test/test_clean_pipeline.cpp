@@ -458,7 +458,9 @@ void expect_clean_disk(const Mesh& m, std::size_t outer_loop, const char* what)
   EXPECT_FALSE(has_multi_edge(m));
   std::vector<std::size_t> sizes;
   EXPECT_EQ(border_loops(m, &sizes), 1u);
-  if (sizes.size() == 1) EXPECT_EQ(sizes[0], outer_loop);
+  if (sizes.size() == 1) {
+    EXPECT_EQ(sizes[0], outer_loop);
+  }
   // a disk: V - E + F = 1
   EXPECT_EQ(vertices(m).size() + face_count(m), edges(m).size() + 1);
 }
@@ -1023,7 +1025,9 @@ TEST(Cli, polygon_meshes_are_triangulated)
     EXPECT_TRUE(CGAL::is_triangle_mesh(m)) << command;
     EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m)) << command;
     EXPECT_TRUE(CGAL::is_closed(m)) << command;
-    if (std::string(command) != "remesh") EXPECT_EQ(face_count(m), 16u) << command;
+    if (std::string(command) != "remesh") {
+      EXPECT_EQ(face_count(m), 16u) << command;
+    }
     std::ifstream r(report);
     std::string json((std::istreambuf_iterator<char>(r)), std::istreambuf_iterator<char>());
     EXPECT_NE(json.find("\"triangulation\""), std::string::npos) << command;

@@ -48,7 +48,115 @@ void add_totals(Result& a, const Result& b)
   });
 }
 
+/// writes `status`, `message` when set, then the listed fields: the
+/// results whose list leaves the status out (they are not summed).
+template <typename Result>
+void report_status_and_fields(const Result& x, Report& r)
+{
+  r.add("status", to_string(x.status));
+  if (!x.message.empty()) r.add("message", x.message);
+  report_fields(x, r);
+}
+
 }  // namespace internal
+
+/// \ingroup mrepair_clean
+/// what `relax_spikes()` did.
+struct Spike_relaxation_result
+{
+  Status status = Status::ok;
+  std::string message;
+  std::size_t spiked_vertices_before = 0;   ///< by either criterion
+  std::size_t spiked_by_height_before = 0;  ///< of which only by the height criterion
+  std::size_t spiked_vertices_after = 0;    ///< whole mesh
+  std::size_t spiked_in_region_after = 0;   ///< in the working region (unrelaxable)
+  std::size_t vertices_relaxed = 0;         ///< distinct vertices moved
+  std::size_t region_vertices = 0;
+  std::size_t iterations = 0;
+
+  template <typename F>
+  static void for_each_field(F&& f)
+  {
+    using R = Spike_relaxation_result;
+    f("spiked_vertices_before", &R::spiked_vertices_before, totals::last{});
+    f("spiked_by_height_before", &R::spiked_by_height_before, totals::last{});
+    f("spiked_vertices_after", &R::spiked_vertices_after, totals::last{});
+    f("spiked_in_region_after", &R::spiked_in_region_after, totals::last{});
+    f("vertices_relaxed", &R::vertices_relaxed, totals::sum{});
+    f("region_vertices", &R::region_vertices, totals::last{});
+    f("iterations", &R::iterations, totals::sum{});
+  }
+
+  void to_report(Report& r) const { internal::report_status_and_fields(*this, r); }
+};
+
+/// \ingroup mrepair_clean
+/// what `remove_unrelaxable_spikes()` did.
+struct Spike_removal_result
+{
+  Status status = Status::ok;
+  std::string message;
+  std::size_t spiked_vertices_found = 0;
+  std::size_t vertices_removed = 0;        ///< spiked vertices and vertices left isolated
+  std::size_t faces_removed = 0;           ///< faces incident to spiked vertices
+  std::size_t dangling_faces_removed = 0;  ///< smaller fans of pinched vertices
+  std::size_t pinched_vertices_fixed = 0;
+  std::size_t boundary_loops = 0;          ///< boundary loops along the removed region (holes left)
+  std::size_t spiked_vertices_after = 0;
+  std::size_t rounds = 0;
+
+  template <typename F>
+  static void for_each_field(F&& f)
+  {
+    using R = Spike_removal_result;
+    f("spiked_vertices_found", &R::spiked_vertices_found, totals::last{});
+    f("vertices_removed", &R::vertices_removed, totals::sum{});
+    f("faces_removed", &R::faces_removed, totals::sum{});
+    f("dangling_faces_removed", &R::dangling_faces_removed, totals::sum{});
+    f("pinched_vertices_fixed", &R::pinched_vertices_fixed, totals::sum{});
+    f("boundary_loops", &R::boundary_loops, totals::sum{});
+    f("spiked_vertices_after", &R::spiked_vertices_after, totals::last{});
+    f("rounds", &R::rounds, totals::sum{});
+  }
+
+  void to_report(Report& r) const { internal::report_status_and_fields(*this, r); }
+};
+
+/// \ingroup mrepair_clean
+/// what `repair_near_degenerate_faces()` did.
+struct Near_degenerate_faces_result
+{
+  Status status = Status::ok;
+  std::string message;
+  std::size_t near_degenerate_faces_before = 0; ///< definition of inspect.h
+  std::size_t near_degenerate_faces_after = 0;
+  std::size_t collapsible_edges_initial = 0;
+  std::size_t edges_collapsed = 0;
+  std::size_t edges_flipped = 0;   ///< cap fallback
+  std::size_t rejected_link_condition = 0; ///< collapsible edges left: link condition failed
+  std::size_t rejected_normal_test = 0;    ///< ... every destination failed the normal test
+  std::size_t rejected_boundary = 0;       ///< ... interior edge joining two boundary vertices
+  std::size_t faces_before = 0;
+  std::size_t faces_after = 0;
+
+  template <typename F>
+  static void for_each_field(F&& f)
+  {
+    using R = Near_degenerate_faces_result;
+    f("near_degenerate_faces_before", &R::near_degenerate_faces_before, totals::last{});
+    f("near_degenerate_faces_after", &R::near_degenerate_faces_after, totals::last{});
+    f("collapsible_edges_initial", &R::collapsible_edges_initial, totals::sum{});
+    f("edges_collapsed", &R::edges_collapsed, totals::sum{});
+    f("edges_flipped", &R::edges_flipped, totals::sum{});
+    f("rejected_link_condition", &R::rejected_link_condition, totals::sum{});
+    f("rejected_normal_test", &R::rejected_normal_test, totals::sum{});
+    f("rejected_boundary", &R::rejected_boundary, totals::sum{});
+    f("faces_before", &R::faces_before, totals::last{});
+    f("faces_after", &R::faces_after, totals::last{});
+  }
+
+  void to_report(Report& r) const { internal::report_status_and_fields(*this, r); }
+};
 
 /// \ingroup mrepair_clean
 /// what `remove_small_components()` did.

@@ -2,6 +2,7 @@
 #ifndef MREPAIR_RELAX_SPIKES_H
 #define MREPAIR_RELAX_SPIKES_H
 
+#include <mrepair/cleaning_results.h>
 #include <mrepair/geometric_statistics.h>
 #include <mrepair/internal/scan_clean/common.h>
 #include <mrepair/internal/scan_clean/spikes_impl.h>
@@ -49,64 +50,6 @@ MREPAIR_ADD_NAMED_PARAMETER(max_spike_removal_rounds) // (3)
 
 namespace mrepair {
 
-/// \ingroup mrepair_clean
-/// result of `relax_spikes()`.
-struct Spike_relaxation_result
-{
-  Status status = Status::ok;
-  std::string message;
-  std::size_t spiked_vertices_before = 0;   ///< by either criterion
-  std::size_t spiked_by_height_before = 0;  ///< of which only by the height criterion
-  std::size_t spiked_vertices_after = 0;    ///< whole mesh
-  std::size_t spiked_in_region_after = 0;   ///< in the working region (unrelaxable)
-  std::size_t vertices_relaxed = 0;         ///< distinct vertices moved
-  std::size_t region_vertices = 0;
-  std::size_t iterations = 0;
-
-  void to_report(Report& r) const
-  {
-    r.add("status", to_string(status));
-    if (!message.empty()) r.add("message", message);
-    r.add("spiked_vertices_before", spiked_vertices_before);
-    r.add("spiked_by_height_before", spiked_by_height_before);
-    r.add("spiked_vertices_after", spiked_vertices_after);
-    r.add("spiked_in_region_after", spiked_in_region_after);
-    r.add("vertices_relaxed", vertices_relaxed);
-    r.add("region_vertices", region_vertices);
-    r.add("iterations", iterations);
-  }
-};
-
-/// \ingroup mrepair_clean
-/// result of `remove_unrelaxable_spikes()`.
-struct Spike_removal_result
-{
-  Status status = Status::ok;
-  std::string message;
-  std::size_t spiked_vertices_found = 0;
-  std::size_t vertices_removed = 0;        ///< spiked vertices and vertices left isolated
-  std::size_t faces_removed = 0;           ///< faces incident to spiked vertices
-  std::size_t dangling_faces_removed = 0;  ///< smaller fans of pinched vertices
-  std::size_t pinched_vertices_fixed = 0;
-  std::size_t boundary_loops = 0;          ///< boundary loops along the removed region (holes left)
-  std::size_t spiked_vertices_after = 0;
-  std::size_t rounds = 0;
-
-  void to_report(Report& r) const
-  {
-    r.add("status", to_string(status));
-    if (!message.empty()) r.add("message", message);
-    r.add("spiked_vertices_found", spiked_vertices_found);
-    r.add("vertices_removed", vertices_removed);
-    r.add("faces_removed", faces_removed);
-    r.add("dangling_faces_removed", dangling_faces_removed);
-    r.add("pinched_vertices_fixed", pinched_vertices_fixed);
-    r.add("boundary_loops", boundary_loops);
-    r.add("spiked_vertices_after", spiked_vertices_after);
-    r.add("rounds", rounds);
-  }
-};
-
 namespace internal {
 namespace scan_clean {
 template <typename NP>
@@ -130,6 +73,25 @@ bool read_spike_settings(const NP& np, Spike_settings& s, std::string& message)
   s.full_angle = to_radians(b);
   return true;
 }
+
+// Both spike calls on given statistics: phase, settings, then `worker` on
+// local operations that keep `stats` current.
+template <typename Result, typename Mesh, typename VPM, typename NP, typename Worker>
+Result run_spike_call(Mesh& tm, Geometric_statistics<Mesh, VPM>& stats, const NP& np,
+                      const char* phase_name, Worker&& worker)
+{
+  Visitor_handle<NP> vis(np);
+  Phase_scope<Visitor_handle<NP>> phase(vis, phase_name);
+  Spike_settings s;
+  Result r;
+  if (!read_spike_settings(np, s, r.message)) {
+    r.status = Status::invalid_parameter;
+    return r;
+  }
+  Local_operations<Mesh, VPM> ops(tm, stats.vertex_point_map());
+  ops.keep_current(&stats);
+  return worker(ops, stats, s, vis);
+}
 } // namespace scan_clean
 } // namespace internal
 
@@ -151,45 +113,10 @@ template <typename TriangleMesh, typename VPM, typename CGAL_NP_TEMPLATE_PARAMET
 Spike_relaxation_result relax_spikes(TriangleMesh& tm, Geometric_statistics<TriangleMesh, VPM>& stats,
                                      const CGAL_NP_CLASS& np = parameters::default_values())
 {
-  namespace SC = internal::scan_clean;
-  Spike_relaxation_result r;
-  internal::Visitor_handle<CGAL_NP_CLASS> vis(np);
-  internal::Phase_scope<internal::Visitor_handle<CGAL_NP_CLASS>> phase(vis, "relax_spikes");
-  SC::Spike_settings s;
-  if (!SC::read_spike_settings(np, s, r.message)) {
-    r.status = Status::invalid_parameter;
-    return r;
-  }
-  auto S = SC::collect_spiked(stats, s, &r.spiked_by_height_before);
-  r.spiked_vertices_before = S.size();
-  SC::Relax_counts c;
-  if (!S.empty()) {
-    internal::Local_operations<TriangleMesh, VPM> ops(tm, stats.vertex_point_map());
-    ops.keep_current(&stats);
-    SC::Spike_relaxer<TriangleMesh, VPM, internal::Visitor_handle<CGAL_NP_CLASS>> worker(
-        ops, stats, vis, s, c);
-    worker.run(std::move(S));
-  }
-  r.vertices_relaxed = c.vertices_relaxed;
-  r.iterations = c.iterations;
-  r.region_vertices = c.region_vertices;
-  r.spiked_in_region_after = c.spiked_in_region_after;
-  // Only the working region changed: moved vertices are within 1 ring of S, and
-  // a vertex's spike status depends on its 1-ring, so with n >= 2 rings every
-  // vertex whose status can change lies in W; otherwise count everything again.
-  if (s.rings >= 2)
-    r.spiked_vertices_after = r.spiked_vertices_before - c.spiked_in_region_before + c.spiked_in_region_after;
-  else
-    r.spiked_vertices_after = SC::count_spiked(stats, s);
-  if (c.cancelled) {
-    r.status = Status::cancelled;
-    r.message = "cancelled by the visitor";
-  } else if (r.spiked_in_region_after > 0) {
-    r.status = Status::partial;
-    r.message = "unrelaxable spikes left (see remove_unrelaxable_spikes)";
-  }
-  vis.progress(1.0);
-  return r;
+  return internal::scan_clean::run_spike_call<Spike_relaxation_result>(
+      tm, stats, np, "relax_spikes", [](auto& ops, auto& st, const auto& s, auto& vis) {
+        return internal::scan_clean::relax_spikes_with(ops, st, s, vis);
+      });
 }
 
 /// \ingroup mrepair_clean
@@ -201,16 +128,8 @@ template <typename TriangleMesh, typename CGAL_NP_TEMPLATE_PARAMETERS>
 Spike_relaxation_result relax_spikes(TriangleMesh& tm,
                                      const CGAL_NP_CLASS& np = parameters::default_values())
 {
-  using VPM = typename CGAL::GetVertexPointMap<TriangleMesh, CGAL_NP_CLASS>::type;
-  VPM vpm = CGAL::parameters::choose_parameter(
-      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
-      get_property_map(CGAL::vertex_point, tm));
-  Spike_relaxation_result r;
-  r.status = internal::scan_clean::check_input(tm, vpm, r.message);
-  if (r.status != Status::ok) return r;
-  Geometric_statistics<TriangleMesh, VPM> stats(tm, vpm);
-  stats.compute_all();
-  return relax_spikes(tm, stats, np);
+  return internal::scan_clean::with_fresh_statistics(
+      tm, np, Spike_relaxation_result(), [&](auto& stats) { return relax_spikes(tm, stats, np); });
 }
 
 /// \ingroup mrepair_clean
@@ -227,40 +146,10 @@ Spike_removal_result remove_unrelaxable_spikes(TriangleMesh& tm,
                                                Geometric_statistics<TriangleMesh, VPM>& stats,
                                                const CGAL_NP_CLASS& np = parameters::default_values())
 {
-  namespace SC = internal::scan_clean;
-  Spike_removal_result r;
-  internal::Visitor_handle<CGAL_NP_CLASS> vis(np);
-  internal::Phase_scope<internal::Visitor_handle<CGAL_NP_CLASS>> phase(vis,
-                                                                       "remove_unrelaxable_spikes");
-  SC::Spike_settings s;
-  if (!SC::read_spike_settings(np, s, r.message)) {
-    r.status = Status::invalid_parameter;
-    return r;
-  }
-  if (vis.stop_requested()) {
-    r.status = Status::cancelled;
-    r.message = "cancelled by the visitor";
-    return r;
-  }
-  auto S = SC::collect_spiked(stats, s);
-  SC::Removal_counts c;
-  if (!S.empty()) {
-    internal::Local_operations<TriangleMesh, VPM> ops(tm, stats.vertex_point_map());
-    ops.keep_current(&stats);
-    SC::Spike_remover<TriangleMesh, VPM> worker(ops, stats, s, c);
-    worker.run(S);
-  }
-  r.spiked_vertices_found = S.size();
-  r.vertices_removed = c.vertices_removed;
-  r.faces_removed = c.faces_removed;
-  r.dangling_faces_removed = c.dangling_faces_removed;
-  r.pinched_vertices_fixed = c.pinched_vertices_fixed;
-  r.boundary_loops = c.boundary_loops;
-  r.rounds = c.rounds;
-  r.spiked_vertices_after = SC::count_spiked(stats, s);
-  if (r.spiked_vertices_after > 0) r.status = Status::partial;
-  vis.progress(1.0);
-  return r;
+  return internal::scan_clean::run_spike_call<Spike_removal_result>(
+      tm, stats, np, "remove_unrelaxable_spikes", [](auto& ops, auto& st, const auto& s, auto& vis) {
+        return internal::scan_clean::remove_unrelaxable_spikes_with(ops, st, s, vis);
+      });
 }
 
 /// \ingroup mrepair_clean
@@ -269,16 +158,8 @@ template <typename TriangleMesh, typename CGAL_NP_TEMPLATE_PARAMETERS>
 Spike_removal_result remove_unrelaxable_spikes(TriangleMesh& tm,
                                                const CGAL_NP_CLASS& np = parameters::default_values())
 {
-  using VPM = typename CGAL::GetVertexPointMap<TriangleMesh, CGAL_NP_CLASS>::type;
-  VPM vpm = CGAL::parameters::choose_parameter(
-      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
-      get_property_map(CGAL::vertex_point, tm));
-  Spike_removal_result r;
-  r.status = internal::scan_clean::check_input(tm, vpm, r.message);
-  if (r.status != Status::ok) return r;
-  Geometric_statistics<TriangleMesh, VPM> stats(tm, vpm);
-  stats.compute_all();
-  return remove_unrelaxable_spikes(tm, stats, np);
+  return internal::scan_clean::with_fresh_statistics(
+      tm, np, Spike_removal_result(), [&](auto& stats) { return remove_unrelaxable_spikes(tm, stats, np); });
 }
 
 } // namespace mrepair

@@ -2,6 +2,7 @@
 #ifndef MREPAIR_REPAIR_NEAR_DEGENERATE_FACES_H
 #define MREPAIR_REPAIR_NEAR_DEGENERATE_FACES_H
 
+#include <mrepair/cleaning_results.h>
 #include <mrepair/geometric_statistics.h>
 #include <mrepair/internal/scan_clean/common.h>
 #include <mrepair/internal/scan_clean/near_degenerate_impl.h>
@@ -37,39 +38,35 @@ MREPAIR_ADD_NAMED_PARAMETER(max_degenerate_operations) // cap on collapses + fli
 
 namespace mrepair {
 
-/// \ingroup mrepair_clean
-/// result of `repair_near_degenerate_faces()`.
-struct Near_degenerate_faces_result
+namespace internal {
+namespace scan_clean {
+// `max_degenerate_operations` defaults to 3 x edges + 100: collapses alone
+// cannot exceed |E|; the cap bounds flip sequences.
+template <typename NP>
+bool read_near_degenerate_settings(const NP& np, std::size_t edge_count,
+                                   Near_degenerate_settings& s, std::string& message)
 {
-  Status status = Status::ok;
-  std::string message;
-  std::size_t near_degenerate_faces_before = 0; ///< definition of inspect.h
-  std::size_t near_degenerate_faces_after = 0;
-  std::size_t collapsible_edges_initial = 0;
-  std::size_t edges_collapsed = 0;
-  std::size_t edges_flipped = 0;   ///< cap fallback
-  std::size_t rejected_link_condition = 0; ///< collapsible edges left: link condition failed
-  std::size_t rejected_normal_test = 0;    ///< ... every destination failed the normal test
-  std::size_t rejected_boundary = 0;       ///< ... interior edge joining two boundary vertices
-  std::size_t faces_before = 0;
-  std::size_t faces_after = 0;
-
-  void to_report(Report& r) const
-  {
-    r.add("status", to_string(status));
-    if (!message.empty()) r.add("message", message);
-    r.add("near_degenerate_faces_before", near_degenerate_faces_before);
-    r.add("near_degenerate_faces_after", near_degenerate_faces_after);
-    r.add("collapsible_edges_initial", collapsible_edges_initial);
-    r.add("edges_collapsed", edges_collapsed);
-    r.add("edges_flipped", edges_flipped);
-    r.add("rejected_link_condition", rejected_link_condition);
-    r.add("rejected_normal_test", rejected_normal_test);
-    r.add("rejected_boundary", rejected_boundary);
-    r.add("faces_before", faces_before);
-    r.add("faces_after", faces_after);
+  Near_degenerate_criterion& k = s.criterion;
+  k.zero_edge_factor = get_or<double>(np, internal_np::zero_edge_factor, defaults::zero_edge_factor);
+  k.skinny_edge_factor =
+      get_or<double>(np, internal_np::skinny_edge_factor, defaults::skinny_edge_factor);
+  const double skinny_deg = get_or<double>(np, internal_np::skinny_angle, defaults::skinny_angle);
+  const double dev_deg = get_or<double>(np, internal_np::max_normal_deviation, 45.0);
+  s.max_operations =
+      get_or<std::size_t>(np, internal_np::max_degenerate_operations, 3 * edge_count + 100);
+  if (!(k.zero_edge_factor >= 0) || !std::isfinite(k.zero_edge_factor) ||
+      !(k.skinny_edge_factor >= 0) || !std::isfinite(k.skinny_edge_factor) ||
+      !(skinny_deg >= 0 && skinny_deg <= 180) || !(dev_deg > 0 && dev_deg <= 180)) {
+    message = "zero_edge_factor, skinny_edge_factor >= 0; skinny_angle in [0,180]; "
+              "max_normal_deviation in (0,180]";
+    return false;
   }
-};
+  k.skinny_angle = to_radians(skinny_deg);
+  s.max_normal_deviation = to_radians(dev_deg);
+  return true;
+}
+} // namespace scan_clean
+} // namespace internal
 
 /// \ingroup mrepair_clean
 /// removes near-degenerate faces (needles, caps, slivers) by safe edge
@@ -91,56 +88,17 @@ Near_degenerate_faces_result repair_near_degenerate_faces(
     const CGAL_NP_CLASS& np = parameters::default_values())
 {
   namespace SC = internal::scan_clean;
-  Near_degenerate_faces_result r;
   internal::Visitor_handle<CGAL_NP_CLASS> vis(np);
   internal::Phase_scope<internal::Visitor_handle<CGAL_NP_CLASS>> phase(vis, "near_degenerate_faces");
   SC::Near_degenerate_settings s;
-  internal::Near_degenerate_criterion& k = s.criterion;
-  k.zero_edge_factor =
-      internal::get_or<double>(np, internal_np::zero_edge_factor, defaults::zero_edge_factor);
-  k.skinny_edge_factor =
-      internal::get_or<double>(np, internal_np::skinny_edge_factor, defaults::skinny_edge_factor);
-  const double skinny_deg = internal::get_or<double>(np, internal_np::skinny_angle, defaults::skinny_angle);
-  const double dev_deg = internal::get_or<double>(np, internal_np::max_normal_deviation, 45.0);
-  // default cap: collapses alone cannot exceed |E|; the cap bounds flip sequences
-  s.max_operations = internal::get_or<std::size_t>(np, internal_np::max_degenerate_operations,
-                                                   3 * stats.edge_count() + 100);
-  if (!(k.zero_edge_factor >= 0) || !std::isfinite(k.zero_edge_factor) ||
-      !(k.skinny_edge_factor >= 0) || !std::isfinite(k.skinny_edge_factor) ||
-      !(skinny_deg >= 0 && skinny_deg <= 180) || !(dev_deg > 0 && dev_deg <= 180)) {
+  Near_degenerate_faces_result r;
+  if (!SC::read_near_degenerate_settings(np, stats.edge_count(), s, r.message)) {
     r.status = Status::invalid_parameter;
-    r.message = "zero_edge_factor, skinny_edge_factor >= 0; skinny_angle in [0,180]; "
-                "max_normal_deviation in (0,180]";
     return r;
   }
-  k.skinny_angle = internal::to_radians(skinny_deg);
-  s.max_normal_deviation = internal::to_radians(dev_deg);
-  r.faces_before = faces(tm).size();
-  std::vector<typename boost::graph_traits<TriangleMesh>::halfedge_descriptor> flagged;
-  r.near_degenerate_faces_before = SC::count_near_degenerate_faces(stats, s, &flagged);
-  SC::Near_degenerate_counts c;
   internal::Local_operations<TriangleMesh, VPM> ops(tm, stats.vertex_point_map());
   ops.keep_current(&stats);
-  SC::Near_degenerate_repairer<TriangleMesh, VPM, internal::Visitor_handle<CGAL_NP_CLASS>> worker(
-      ops, stats, vis, s, c);
-  worker.run(flagged);
-  r.collapsible_edges_initial = c.collapsible_edges_initial;
-  r.edges_collapsed = c.edges_collapsed;
-  r.edges_flipped = c.edges_flipped;
-  r.rejected_link_condition = c.rejected_link_condition;
-  r.rejected_normal_test = c.rejected_normal_test;
-  r.rejected_boundary = c.rejected_boundary;
-  r.faces_after = faces(tm).size();
-  r.near_degenerate_faces_after = SC::count_near_degenerate_faces(stats, s);
-  if (c.cancelled) {
-    r.status = Status::cancelled;
-    r.message = "cancelled by the visitor";
-  } else if (r.near_degenerate_faces_after > 0) {
-    r.status = Status::partial;
-    if (c.hit_operation_cap) r.message = "max_degenerate_operations reached";
-  }
-  vis.progress(1.0);
-  return r;
+  return SC::repair_near_degenerate_faces_with(ops, stats, s, vis);
 }
 
 /// \ingroup mrepair_clean
@@ -152,19 +110,10 @@ template <typename TriangleMesh, typename CGAL_NP_TEMPLATE_PARAMETERS>
 Near_degenerate_faces_result repair_near_degenerate_faces(
     TriangleMesh& tm, const CGAL_NP_CLASS& np = parameters::default_values())
 {
-  using VPM = typename CGAL::GetVertexPointMap<TriangleMesh, CGAL_NP_CLASS>::type;
-  VPM vpm = CGAL::parameters::choose_parameter(
-      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
-      get_property_map(CGAL::vertex_point, tm));
-  Near_degenerate_faces_result r;
-  r.status = internal::scan_clean::check_input(tm, vpm, r.message);
-  if (r.status != Status::ok) {
-    r.faces_before = r.faces_after = faces(tm).size();
-    return r;
-  }
-  Geometric_statistics<TriangleMesh, VPM> stats(tm, vpm);
-  stats.compute_all();
-  return repair_near_degenerate_faces(tm, stats, np);
+  Near_degenerate_faces_result failed;  // the face counts of an untouched mesh
+  failed.faces_before = failed.faces_after = faces(tm).size();
+  return internal::scan_clean::with_fresh_statistics(
+      tm, np, failed, [&](auto& stats) { return repair_near_degenerate_faces(tm, stats, np); });
 }
 
 } // namespace mrepair

@@ -1,7 +1,9 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
-// Adaptor from the pipeline (clean_scan_mesh.h) to the scan-cleaning-I steps
-// (relax_spikes.h, repair_near_degenerate_faces.h): each call returns a
-// uniform outcome (status, number of changes, report). The geometric
+// Adaptor from the pipeline (clean_scan_mesh.h) to the workers of the
+// scan-cleaning-I steps (internal/scan_clean/: spikes, near-degenerate faces),
+// called on the pipeline's own local operations without the public faces'
+// input checks: each call returns a uniform outcome (status, number of
+// changes, report). The geometric
 // statistics are computed on first need and attached to the pipeline's local
 // operations, which keep them current through every other step's edits;
 // they are detached when the adaptor goes.
@@ -40,7 +42,7 @@ class Spike_steps
   using Stats = Geometric_statistics<PM, VPM>;
   Local_operations<PM, VPM>& ops_;
   PM& pm_;
-  double spike_angle_;  // NaN: the default of relax_spikes.h
+  scan_clean::Spike_settings spike_settings_;
   std::unique_ptr<Stats> stats_;
 
   Stats& stats()
@@ -53,19 +55,17 @@ class Spike_steps
     return *stats_;
   }
 
-  // Calls `f(np)` with a pack carrying the visitor and, when set, the spike angle.
-  template <typename Visitor, typename F>
-  auto with_np(Visitor& vis, F&& f)
-  {
-    auto np = CGAL::parameters::visitor(std::ref(vis));
-    if (std::isnan(spike_angle_)) return f(np);
-    return f(mrepair::parameters::spike_angle(spike_angle_, np));
-  }
-
 public:
-  Spike_steps(Local_operations<PM, VPM>& ops, double spike_angle)
-    : ops_(ops), pm_(ops.mesh()), spike_angle_(spike_angle)
-  {}
+  // `spike_angle`: degrees, NaN for the default of relax_spikes.h; the
+  // pipeline has checked it, so the settings read without error.
+  Spike_steps(Local_operations<PM, VPM>& ops, double spike_angle) : ops_(ops), pm_(ops.mesh())
+  {
+    std::string unused;
+    if (std::isnan(spike_angle))
+      scan_clean::read_spike_settings(parameters::default_values(), spike_settings_, unused);
+    else
+      scan_clean::read_spike_settings(parameters::spike_angle(spike_angle), spike_settings_, unused);
+  }
   Spike_steps(const Spike_steps&) = delete;
   Spike_steps& operator=(const Spike_steps&) = delete;
   ~Spike_steps()
@@ -77,8 +77,7 @@ public:
   Step_outcome relax(Visitor& vis)
   {
     Step_outcome o;
-    Spike_relaxation_result r =
-        with_np(vis, [&](const auto& np) { return relax_spikes(pm_, stats(), np); });
+    Spike_relaxation_result r = scan_clean::relax_spikes_with(ops_, stats(), spike_settings_, vis);
     o.status = r.status;
     o.changes = r.vertices_relaxed;
     r.to_report(o.report);
@@ -90,7 +89,7 @@ public:
   {
     Step_outcome o;
     Spike_removal_result r =
-        with_np(vis, [&](const auto& np) { return remove_unrelaxable_spikes(pm_, stats(), np); });
+        scan_clean::remove_unrelaxable_spikes_with(ops_, stats(), spike_settings_, vis);
     o.status = r.status;
     o.changes = r.faces_removed + r.dangling_faces_removed;
     o.faces_removed = r.faces_removed + r.dangling_faces_removed;
@@ -102,8 +101,12 @@ public:
   Step_outcome fix_near_degenerate(Visitor& vis)
   {
     Step_outcome o;
-    Near_degenerate_faces_result r = repair_near_degenerate_faces(
-        pm_, stats(), CGAL::parameters::visitor(std::ref(vis)));
+    scan_clean::Near_degenerate_settings s;
+    std::string unused;
+    scan_clean::read_near_degenerate_settings(parameters::default_values(), stats().edge_count(),
+                                              s, unused);
+    Near_degenerate_faces_result r =
+        scan_clean::repair_near_degenerate_faces_with(ops_, stats(), s, vis);
     o.status = r.status;
     o.changes = r.edges_collapsed + r.edges_flipped;
     o.faces_removed = r.faces_before - r.faces_after;

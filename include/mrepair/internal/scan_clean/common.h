@@ -1,5 +1,6 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
-// The input check shared by repair_near_degenerate_faces.h and relax_spikes.h.
+// The input check and the statistics set-up shared by
+// repair_near_degenerate_faces.h and relax_spikes.h.
 #ifndef MREPAIR_INTERNAL_SCAN_CLEAN_COMMON_H
 #define MREPAIR_INTERNAL_SCAN_CLEAN_COMMON_H
 
@@ -8,6 +9,8 @@
 #include <mrepair/status.h>
 
 #include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/Named_function_parameters.h>
 #include <CGAL/number_utils.h>
 
 #include <cmath>
@@ -45,6 +48,24 @@ Status check_input(const Mesh& m, const VPM& vpm, std::string& message)
     return Status::invalid_mesh;
   }
   return Status::ok;
+}
+
+// The overloads that compute the statistics themselves: reads the vertex
+// point map of `np`, checks the input (on failure `r` is returned with the
+// status and message, the mesh untouched) and calls `run(stats)` with fresh
+// statistics.
+template <typename Result, typename Mesh, typename NP, typename Run>
+Result with_fresh_statistics(Mesh& tm, const NP& np, Result r, Run&& run)
+{
+  using VPM = typename CGAL::GetVertexPointMap<Mesh, NP>::type;
+  VPM vpm = CGAL::parameters::choose_parameter(
+      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+      get_property_map(CGAL::vertex_point, tm));
+  r.status = check_input(tm, vpm, r.message);
+  if (r.status != Status::ok) return r;
+  Geometric_statistics<Mesh, VPM> stats(tm, vpm);
+  stats.compute_all();
+  return run(stats);
 }
 
 } // namespace scan_clean

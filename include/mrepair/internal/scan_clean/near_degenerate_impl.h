@@ -3,6 +3,7 @@
 #ifndef MREPAIR_INTERNAL_SCAN_CLEAN_NEAR_DEGENERATE_IMPL_H
 #define MREPAIR_INTERNAL_SCAN_CLEAN_NEAR_DEGENERATE_IMPL_H
 
+#include <mrepair/cleaning_results.h>
 #include <mrepair/definitions.h>
 #include <mrepair/geometric_statistics.h>
 #include <mrepair/internal/local_operations.h>
@@ -28,18 +29,6 @@ struct Near_degenerate_settings
   Near_degenerate_criterion criterion;  // definitions.h
   double max_normal_deviation = 0.0; // radians
   std::size_t max_operations = 0;
-};
-
-struct Near_degenerate_counts
-{
-  std::size_t collapsible_edges_initial = 0;
-  std::size_t edges_collapsed = 0;
-  std::size_t edges_flipped = 0;
-  std::size_t rejected_link_condition = 0;
-  std::size_t rejected_normal_test = 0;
-  std::size_t rejected_boundary = 0;
-  bool cancelled = false;
-  bool hit_operation_cap = false;
 };
 
 // Counts faces with a zero edge, or a skinny edge whose opposite angle in the
@@ -108,7 +97,9 @@ class Near_degenerate_repairer
   Stats& st_;
   VisitorHandle& vis_;
   Near_degenerate_settings s_;
-  Near_degenerate_counts& c_;
+  Near_degenerate_faces_result& c_;  // the public counters, written in place
+  bool cancelled_ = false;
+  bool hit_operation_cap_ = false;
   Stamp_map stamp_;
   std::priority_queue<Entry> q_;
   double cos_dev_;
@@ -116,7 +107,7 @@ class Near_degenerate_repairer
 public:
   // `ops` keeps `st` current (Local_operations::keep_current).
   Near_degenerate_repairer(Local_operations<Mesh, VPM>& ops, Stats& st, VisitorHandle& vis,
-                           const Near_degenerate_settings& s, Near_degenerate_counts& c)
+                           const Near_degenerate_settings& s, Near_degenerate_faces_result& c)
     : ops_(ops), tm_(ops.mesh()), st_(st), vis_(vis), s_(s), c_(c),
       stamp_(get(CGAL::dynamic_halfedge_property_t<std::uint32_t>(), tm_)),
       cos_dev_(std::cos(s.max_normal_deviation))
@@ -132,7 +123,7 @@ public:
       ++c_.collapsible_edges_initial;
     }
     if (vis_.stop_requested()) {  // polled before any change, even with nothing to do
-      c_.cancelled = true;
+      cancelled_ = true;
       return;
     }
     const double total = static_cast<double>(c_.collapsible_edges_initial) + 1.0;
@@ -145,13 +136,13 @@ public:
       ++pops;
       if (pops == 1 || (pops & 255u) == 0) { // poll the visitor now and then
         if (vis_.stop_requested()) {
-          c_.cancelled = true;
+          cancelled_ = true;
           return;
         }
         vis_.progress((std::min)(1.0, static_cast<double>(pops) / total));
       }
       if (ops >= s_.max_operations) {
-        c_.hit_operation_cap = true;
+        hit_operation_cap_ = true;
         return;
       }
       halfedge_descriptor h = en.h;
@@ -322,6 +313,11 @@ private:
     return false;
   }
 
+public:
+  bool cancelled() const { return cancelled_; }
+  bool hit_operation_cap() const { return hit_operation_cap_; }
+
+private:
   static double min_angle(const Vec& a, const Vec& b, const Vec& c)
   {
     const double x = angle(sub(b, a), sub(c, a));
@@ -330,6 +326,33 @@ private:
     return (std::min)(x, (std::min)(y, z));
   }
 };
+
+// The worker behind repair_near_degenerate_faces(): `ops` keeps `st` current;
+// `vis` gives progress and cancellation. The public face reads the settings.
+template <typename Mesh, typename VPM, typename VisitorHandle>
+Near_degenerate_faces_result repair_near_degenerate_faces_with(
+    Local_operations<Mesh, VPM>& ops, Geometric_statistics<Mesh, VPM>& st,
+    const Near_degenerate_settings& s, VisitorHandle& vis)
+{
+  Near_degenerate_faces_result r;
+  Mesh& tm = ops.mesh();
+  r.faces_before = faces(tm).size();
+  std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor> flagged;
+  r.near_degenerate_faces_before = count_near_degenerate_faces(st, s, &flagged);
+  Near_degenerate_repairer<Mesh, VPM, VisitorHandle> worker(ops, st, vis, s, r);
+  worker.run(flagged);
+  r.faces_after = faces(tm).size();
+  r.near_degenerate_faces_after = count_near_degenerate_faces(st, s);
+  if (worker.cancelled()) {
+    r.status = Status::cancelled;
+    r.message = "cancelled by the visitor";
+  } else if (r.near_degenerate_faces_after > 0) {
+    r.status = Status::partial;
+    if (worker.hit_operation_cap()) r.message = "max_degenerate_operations reached";
+  }
+  vis.progress(1.0);
+  return r;
+}
 
 } // namespace scan_clean
 } // namespace internal

@@ -3,6 +3,7 @@
 #ifndef MREPAIR_INTERNAL_SCAN_CLEAN_SPIKES_IMPL_H
 #define MREPAIR_INTERNAL_SCAN_CLEAN_SPIKES_IMPL_H
 
+#include <mrepair/cleaning_results.h>
 #include <mrepair/geometric_statistics.h>
 #include <mrepair/internal/local_operations.h>
 #include <mrepair/internal/scan_clean/common.h>
@@ -115,16 +116,6 @@ std::size_t count_spiked(const Geometric_statistics<Mesh, VPM>& st, const Spike_
   return collect_spiked(st, s, by_height_only).size();
 }
 
-struct Relax_counts
-{
-  std::size_t vertices_relaxed = 0;
-  std::size_t iterations = 0;
-  std::size_t spiked_in_region_before = 0;
-  std::size_t spiked_in_region_after = 0;
-  std::size_t region_vertices = 0;
-  bool cancelled = false;
-};
-
 template <typename Mesh, typename VPM, typename VisitorHandle>
 class Spike_relaxer
 {
@@ -141,7 +132,9 @@ class Spike_relaxer
   Stats& st_;
   VisitorHandle& vis_;
   const Spike_settings& s_;
-  Relax_counts& c_;
+  Spike_relaxation_result& c_;  // the public counters, written in place
+  std::size_t spiked_in_region_before_ = 0;
+  bool cancelled_ = false;
   Spike_detector<Mesh, VPM> det_;
   Mark mark_;     // generation marks for set building
   Mark in_w_;     // 1 in the working region
@@ -151,7 +144,7 @@ class Spike_relaxer
 public:
   // `ops` keeps `st` current (Local_operations::keep_current).
   Spike_relaxer(Local_operations<Mesh, VPM>& ops, Stats& st, VisitorHandle& vis,
-                const Spike_settings& s, Relax_counts& c)
+                const Spike_settings& s, Spike_relaxation_result& c)
     : ops_(ops), tm_(ops.mesh()), st_(st), vis_(vis), s_(s), c_(c), det_(st, s),
       mark_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm_)),
       in_w_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm_)),
@@ -195,7 +188,7 @@ public:
     }
     c_.region_vertices = W.size();
     for (vertex_descriptor v : W)
-      if (det_.spiked(v)) ++c_.spiked_in_region_before;
+      if (det_.spiked(v)) ++spiked_in_region_before_;
     struct Item
     {
       double w, l; // weight, |L| (tie-break: the most displaced first)
@@ -205,7 +198,7 @@ public:
     std::vector<vertex_descriptor> M;
     while (!S.empty() && c_.iterations < s_.max_iterations) {
       if (vis_.stop_requested()) {
-        c_.cancelled = true;
+        cancelled_ = true;
         break;
       }
       // R = S and its 1-ring; Gauss-Seidel in order of decreasing weight so
@@ -250,6 +243,9 @@ public:
       if (det_.spiked(v)) ++c_.spiked_in_region_after;
   }
 
+  std::size_t spiked_in_region_before() const { return spiked_in_region_before_; }
+  bool cancelled() const { return cancelled_; }
+
 private:
   // uniform Laplacian (1); on the boundary restricted to the boundary neighbours
   Vec laplacian(vertex_descriptor v, const Vec& p) const
@@ -270,17 +266,6 @@ private:
   }
 };
 
-struct Removal_counts
-{
-  std::size_t spiked_found = 0;
-  std::size_t vertices_removed = 0;
-  std::size_t faces_removed = 0;
-  std::size_t dangling_faces_removed = 0;
-  std::size_t pinched_vertices_fixed = 0;
-  std::size_t boundary_loops = 0;
-  std::size_t rounds = 0;
-};
-
 template <typename Mesh, typename VPM>
 class Spike_remover
 {
@@ -299,7 +284,7 @@ class Spike_remover
   Local_operations<Mesh, VPM>& ops_;
   Mesh& tm_;
   const Spike_settings& s_;
-  Removal_counts& c_;
+  Spike_removal_result& c_;  // the public counters, written in place
   Spike_detector<Mesh, VPM> det_;
   Vmark vmark_, alive_;
   Fmark fmark_;
@@ -310,7 +295,7 @@ class Spike_remover
 public:
   // `ops` keeps `st` current (Local_operations::keep_current).
   Spike_remover(Local_operations<Mesh, VPM>& ops, const Stats& st, const Spike_settings& s,
-                Removal_counts& c)
+                Spike_removal_result& c)
     : ops_(ops), tm_(ops.mesh()), s_(s), c_(c), det_(st, s),
       vmark_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm_)),
       alive_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm_)),
@@ -320,7 +305,7 @@ public:
 
   void run(const std::vector<vertex_descriptor>& spiked)
   {
-    c_.spiked_found = spiked.size();
+    c_.spiked_vertices_found = spiked.size();
     std::vector<vertex_descriptor> S = spiked;
     while (!S.empty() && c_.rounds < s_.max_removal_rounds) {
       ++c_.rounds;
@@ -386,6 +371,66 @@ private:
       }
   }
 };
+
+// The workers behind relax_spikes() and remove_unrelaxable_spikes(): `ops`
+// keeps `st` current (Local_operations::keep_current); `vis` gives progress
+// and cancellation. The public faces read the settings and check the input.
+template <typename Mesh, typename VPM, typename VisitorHandle>
+Spike_relaxation_result relax_spikes_with(Local_operations<Mesh, VPM>& ops,
+                                          Geometric_statistics<Mesh, VPM>& st,
+                                          const Spike_settings& s, VisitorHandle& vis)
+{
+  Spike_relaxation_result r;
+  auto S = collect_spiked(st, s, &r.spiked_by_height_before);
+  r.spiked_vertices_before = S.size();
+  std::size_t in_region_before = 0;
+  bool cancelled = false;
+  if (!S.empty()) {
+    Spike_relaxer<Mesh, VPM, VisitorHandle> worker(ops, st, vis, s, r);
+    worker.run(std::move(S));
+    in_region_before = worker.spiked_in_region_before();
+    cancelled = worker.cancelled();
+  }
+  // Only the working region changed: moved vertices are within 1 ring of S, and
+  // a vertex's spike status depends on its 1-ring, so with n >= 2 rings every
+  // vertex whose status can change lies in W; otherwise count everything again.
+  if (s.rings >= 2)
+    r.spiked_vertices_after = r.spiked_vertices_before - in_region_before + r.spiked_in_region_after;
+  else
+    r.spiked_vertices_after = count_spiked(st, s);
+  if (cancelled) {
+    r.status = Status::cancelled;
+    r.message = "cancelled by the visitor";
+  } else if (r.spiked_in_region_after > 0) {
+    r.status = Status::partial;
+    r.message = "unrelaxable spikes left (see remove_unrelaxable_spikes)";
+  }
+  vis.progress(1.0);
+  return r;
+}
+
+template <typename Mesh, typename VPM, typename VisitorHandle>
+Spike_removal_result remove_unrelaxable_spikes_with(Local_operations<Mesh, VPM>& ops,
+                                                    Geometric_statistics<Mesh, VPM>& st,
+                                                    const Spike_settings& s, VisitorHandle& vis)
+{
+  Spike_removal_result r;
+  if (vis.stop_requested()) {
+    r.status = Status::cancelled;
+    r.message = "cancelled by the visitor";
+    return r;
+  }
+  auto S = collect_spiked(st, s);
+  if (!S.empty()) {
+    Spike_remover<Mesh, VPM> worker(ops, st, s, r);
+    worker.run(S);
+  }
+  r.spiked_vertices_found = S.size();
+  r.spiked_vertices_after = count_spiked(st, s);
+  if (r.spiked_vertices_after > 0) r.status = Status::partial;
+  vis.progress(1.0);
+  return r;
+}
 
 } // namespace scan_clean
 } // namespace internal
