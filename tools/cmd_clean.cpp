@@ -28,7 +28,7 @@ const std::vector<cli::Option>& clean_options()
   static const std::vector<cli::Option> o = {
       {"profile", true, "scan|cad|auto: the steps that apply (scan: this command's purpose)"},
       {"spike-angle", true, "dihedral angle (degrees) of a spiked vertex (default of relax_spikes: 100)"},
-      {"max-hole", true, "holes with fewer boundary vertices are filled (100)"},
+      {"max-hole", true, "holes with fewer boundary vertices are filled (100; 500 for cad)"},
       {"min-component", true, "components with fewer faces are removed (400)"},
       {"iterations", true, "iteration cap (5)"},
       {"boundary-angle", true, "dihedral angle (degrees) of a bad boundary vertex (120)"},
@@ -80,10 +80,11 @@ int run_clean(int argc, char** argv)
   if (a.has("only")) mask = parse_steps(a.get("only"));
   if (a.has("skip")) mask &= ~parse_steps(a.get("skip"));
   const double spike = a.get_double("spike-angle", std::numeric_limits<double>::quiet_NaN());
-  const std::size_t max_hole = get_count(a, "max-hole", 100);
-  const std::size_t min_comp = get_count(a, "min-component", 400);
+  namespace D = mrepair::defaults;
+  const std::size_t max_hole = get_count(a, "max-hole", D::max_hole_vertices);
+  const std::size_t min_comp = get_count(a, "min-component", D::min_component_faces);
   const std::size_t iterations = get_count(a, "iterations", 5);
-  const double boundary_angle = a.get_double("boundary-angle", 120.);
+  const double boundary_angle = a.get_double("boundary-angle", D::boundary_dihedral_angle);
   const double density = a.get_double("density", 1.);
 
   const bool quiet = a.has("quiet") || a.has("json");
@@ -112,20 +113,24 @@ int run_clean(int argc, char** argv)
     return cli::fail(a.positional[0] + ": " + error);
   }
 
-  // with auto and no step list, the profile picks the steps
-  auto run = [&](const auto& steps_np) {
+  // with auto and no step list, the profile picks the steps; without
+  // --max-hole, so does the hole limit (100 for a scan, 500 for cad)
+  auto run_with = [&](const auto& hole_np) {
     return mrepair::clean_scan_mesh(
-        mesh, MP::input_profile(profile, MP::max_hole_vertices(
-                max_hole, MP::min_component_faces(
-                              min_comp, MP::max_clean_iterations(
-                                            iterations, MP::boundary_dihedral_angle(
-                                                            boundary_angle,
-                                                            MP::hole_density_factor(
-                                                                density,
-                                                                MP::fair_hole_patches(
-                                                                    a.has("fair"),
-                                                                    MP::spike_angle(spike, steps_np))))))))
+        mesh, MP::input_profile(
+                  profile, MP::min_component_faces(
+                               min_comp, MP::max_clean_iterations(
+                                             iterations, MP::boundary_dihedral_angle(
+                                                             boundary_angle,
+                                                             MP::hole_density_factor(
+                                                                 density,
+                                                                 MP::fair_hole_patches(
+                                                                     a.has("fair"),
+                                                                     MP::spike_angle(spike, hole_np)))))))
                   .visitor(std::ref(printer)));
+  };
+  auto run = [&](const auto& steps_np) {
+    return a.has("max-hole") ? run_with(MP::max_hole_vertices(max_hole, steps_np)) : run_with(steps_np);
   };
   // spike_angle NaN (not given) means "the relax_spikes default" in the pipeline.
   const bool profile_picks = profile == mrepair::Input_profile::automatic && !a.has("only") &&

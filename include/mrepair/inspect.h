@@ -38,20 +38,21 @@ namespace mrepair {
 
 namespace internal {
 
-// Reads the thresholds of a pack; returns false (and a message) when one is out of range.
+// Reads the thresholds of a pack over their defaults (Inspect_thresholds,
+// from definitions.h); returns false (and a message) when one is out of range.
 template <typename NamedParameters>
 bool read_inspect_thresholds(const NamedParameters& np, Inspect_thresholds& t, std::string& msg)
 {
-  t.spike_angle = get_or<double>(np, internal_np::spike_angle, 100.0);
-  t.spike_height_factor =
-      get_or<double>(np, internal_np::spike_height_factor, default_spike_height_factor);
-  t.zero_edge_factor = get_or<double>(np, internal_np::zero_edge_factor, 0.1);
-  t.skinny_edge_factor = get_or<double>(np, internal_np::skinny_edge_factor, 0.25);
-  t.skinny_angle = get_or<double>(np, internal_np::skinny_angle, 10.0);
-  t.small_angle = get_or<double>(np, internal_np::inspect_small_angle, 30.0);
-  t.max_hole_vertices = get_or<std::size_t>(np, internal_np::max_hole_vertices, 100);
-  t.min_component_faces = get_or<std::size_t>(np, internal_np::min_component_faces, 400);
-  t.t_junction_tolerance = get_or<double>(np, internal_np::t_junction_tolerance, -1.0);
+  t.spike_angle = get_or<double>(np, internal_np::spike_angle, t.spike_angle);
+  t.spike_height_factor = get_or<double>(np, internal_np::spike_height_factor, t.spike_height_factor);
+  t.zero_edge_factor = get_or<double>(np, internal_np::zero_edge_factor, t.zero_edge_factor);
+  t.skinny_edge_factor = get_or<double>(np, internal_np::skinny_edge_factor, t.skinny_edge_factor);
+  t.skinny_angle = get_or<double>(np, internal_np::skinny_angle, t.skinny_angle);
+  t.small_angle = get_or<double>(np, internal_np::inspect_small_angle, t.small_angle);
+  t.max_hole_vertices = get_or<std::size_t>(np, internal_np::max_hole_vertices, t.max_hole_vertices);
+  t.min_component_faces =
+      get_or<std::size_t>(np, internal_np::min_component_faces, t.min_component_faces);
+  t.t_junction_tolerance = get_or<double>(np, internal_np::t_junction_tolerance, t.t_junction_tolerance);
   auto bad = [&](const char* what) {
     msg = std::string("parameter out of range: ") + what;
     return false;
@@ -65,6 +66,19 @@ bool read_inspect_thresholds(const NamedParameters& np, Inspect_thresholds& t, s
   if (!(t.small_angle >= 0 && t.small_angle <= 180)) return bad("inspect_small_angle (degrees)");
   if (std::isnan(t.t_junction_tolerance) || std::isinf(t.t_junction_tolerance))
     return bad("t_junction_tolerance");
+  return true;
+}
+
+// Both entry points: thresholds read and copied into the report, or the
+// report says invalid_parameter.
+template <typename NamedParameters>
+bool start_inspection(const NamedParameters& np, Inspect_thresholds& t, Inspection_report& r)
+{
+  if (!read_inspect_thresholds(np, t, r.message)) {
+    r.status = Status::invalid_parameter;
+    return false;
+  }
+  copy_thresholds(t, r);
   return true;
 }
 
@@ -108,11 +122,7 @@ Inspection_report inspect_polygon_soup(const PointRange& points, const PolygonRa
   Inspection_report r;
   r.from_mesh = false;
   internal::Inspect_thresholds t;
-  if (!internal::read_inspect_thresholds(np, t, r.message)) {
-    r.status = Status::invalid_parameter;
-    return r;
-  }
-  internal::copy_thresholds(t, r);
+  if (!internal::start_inspection(np, t, r)) return r;
   internal::Visitor_handle<NamedParameters> visitor(np);
   internal::Surface_arrays a;
   {
@@ -159,11 +169,7 @@ Inspection_report inspect(const PolygonMesh& pmesh,
   Inspection_report r;
   r.from_mesh = true;
   internal::Inspect_thresholds t;
-  if (!internal::read_inspect_thresholds(np, t, r.message)) {
-    r.status = Status::invalid_parameter;
-    return r;
-  }
-  internal::copy_thresholds(t, r);
+  if (!internal::start_inspection(np, t, r)) return r;
   const bool count_si = internal::get_or<bool>(np, internal_np::count_self_intersections, true);
   auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                               get_const_property_map(CGAL::vertex_point, pmesh));
