@@ -771,6 +771,15 @@ TYPED_TEST(Clean_pipeline, steps_keep_statistics_current_through_the_local_opera
   EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
   // the counts of the operations reconcile with the mesh
   EXPECT_EQ(f0 + ops.counts.faces_added, face_count(m) + ops.counts.faces_removed);
+  // the constant-time element counts the operations use agree with the
+  // ranges, removed (not yet collected) elements left out
+  EXPECT_EQ(mrepair::internal::face_count(m),
+            static_cast<std::size_t>(std::distance(faces(m).begin(), faces(m).end())));
+  EXPECT_EQ(mrepair::internal::vertex_count(m),
+            static_cast<std::size_t>(std::distance(vertices(m).begin(), vertices(m).end())));
+  if constexpr (mrepair::internal::Is_surface_mesh<Mesh>::value) {
+    EXPECT_GT(m.number_of_removed_faces(), 0u);
+  }
 }
 
 // ---- section 4: the pipeline --------------------------------------------------

@@ -7,7 +7,27 @@
 #include <exception>
 #include <iostream>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 namespace {
+// A command allocates and frees arrays of several MB per pass (read, inspect,
+// repair, inspect, write). glibc serves blocks above its dynamic mmap
+// threshold with fresh mmaps, so every pass pays page faults and zeroing
+// again; on a VM that was a third of `mrepair inspect` on a 1M-face scan
+// (7.6 s -> 4.2 s on a loaded 2-core VM, peak +7%). Keeping blocks up to
+// the largest threshold glibc accepts (32 MiB on 64-bit) in the heap, and
+// not trimming it, lets later passes reuse warm pages. The library itself
+// does not touch allocator settings: this is the program's choice.
+void keep_freed_memory_warm()
+{
+#if defined(__GLIBC__)
+  mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024);
+  mallopt(M_TRIM_THRESHOLD, 1024 * 1024 * 1024);
+#endif
+}
+
 void print_usage()
 {
   auto commands = mrepair::cli::registry();
@@ -23,6 +43,7 @@ void print_usage()
 
 int main(int argc, char** argv)
 {
+  keep_freed_memory_warm();
   if (argc < 2) {
     print_usage();
     return 2;

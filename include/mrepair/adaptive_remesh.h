@@ -99,7 +99,7 @@ Remeshing_result remesh_entry(TriangleMesh& tm, const FaceRange* part, Remesh_mo
     return fail(Status::invalid_parameter, "remesh_density_factor must be positive");
   if (!(o.gamma > 0) || !std::isfinite(o.gamma))
     return fail(Status::invalid_parameter, "remesh_gamma must be positive");
-  if (faces(tm).size() == 0) return fail(Status::empty_input, "the mesh has no faces");
+  if (internal::face_count(tm) == 0) return fail(Status::empty_input, "the mesh has no faces");
   if (!CGAL::is_triangle_mesh(tm))
     return fail(Status::invalid_mesh, "the mesh is not a triangle mesh");
   for (auto v : vertices(tm))

@@ -330,13 +330,13 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
   Scan_cleaning_result r;
   for (std::size_t i = 0; i < number_of_clean_steps; ++i)
     r.steps[i].enabled = (mask >> i) & 1u;
-  r.vertices_before = static_cast<std::size_t>(vertices(pmesh).size());
-  r.faces_before = static_cast<std::size_t>(faces(pmesh).size());
+  r.vertices_before = internal::vertex_count(pmesh);
+  r.faces_before = internal::face_count(pmesh);
   auto finish = [&](Status s, const std::string& msg = std::string()) {
     r.status = s;
     r.message = msg;
-    r.vertices_after = static_cast<std::size_t>(vertices(pmesh).size());
-    r.faces_after = static_cast<std::size_t>(faces(pmesh).size());
+    r.vertices_after = internal::vertex_count(pmesh);
+    r.faces_after = internal::face_count(pmesh);
     r.seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
     return r;
   };
@@ -412,14 +412,14 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
               if (!is_border(h, pmesh)) doomed.push_back(face(h, pmesh));
         // Vertices left without faces are removed by Euler::remove_face; the
         // isolated ones are among the isolated vertices below.
-        const std::size_t nv = static_cast<std::size_t>(vertices(pmesh).size());
+        const std::size_t nv = internal::vertex_count(pmesh);
         r.faces_removed_with_non_finite = ops.remove_faces_without_pinches(doomed);
         // the removal also drops finite vertices left without faces: those
         // count as isolated, not as non-finite
         std::size_t non_finite_left = 0;
         for (vertex_descriptor v : vertices(pmesh))
           if (!internal::is_finite_point(vpm, v)) ++non_finite_left;
-        const std::size_t gone = nv - static_cast<std::size_t>(vertices(pmesh).size());
+        const std::size_t gone = nv - internal::vertex_count(pmesh);
         r.non_finite_vertices_removed = bad.size() - non_finite_left;
         r.isolated_vertices_removed = gone - r.non_finite_vertices_removed;
       }
@@ -451,7 +451,7 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
   std::vector<std::size_t> previous;
   bool partial = false;
   for (std::size_t it = 0; it < max_it; ++it) {
-    if (faces(pmesh).size() == 0) break;
+    if (internal::face_count(pmesh) == 0) break;
     internal::Phase_scope<Handle> iteration_phase(
         visitor, it < 9 ? iteration_names[it] : "iteration");
     std::vector<std::size_t> before(number_of_clean_steps);

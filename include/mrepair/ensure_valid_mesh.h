@@ -6,6 +6,7 @@
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
 #include <mrepair/status.h>
+#include <mrepair/internal/utility.h>
 
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -316,7 +317,7 @@ Validity_result ensure_valid_mesh(PolygonMesh& pmesh,
       get_property_map(CGAL::vertex_point, pmesh));
   const std::size_t cap = internal::get_or(np, internal_np::max_validity_operations, std::size_t(0));
   Validity_result r;
-  if (faces(pmesh).size() == 0) return r;
+  if (internal::face_count(pmesh) == 0) return r;
   if (!CGAL::is_triangle_mesh(pmesh)) {
     r.status = Status::invalid_mesh;
     r.message = "ensure_valid_mesh needs a triangle mesh";
@@ -356,7 +357,7 @@ Validity_result ensure_valid_mesh(PolygonMesh& pmesh,
     // sorted keys, not a map: a linear scan after one sort (1M faces: a
     // tenth of the map's time)
     std::vector<std::pair<std::array<std::size_t, 3>, face_descriptor>> keys;
-    keys.reserve(static_cast<std::size_t>(faces(pmesh).size()));
+    keys.reserve(internal::face_count(pmesh));
     for (face_descriptor f : faces(pmesh)) {
       std::array<std::size_t, 3> key{};
       int k = 0;

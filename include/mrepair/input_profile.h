@@ -122,7 +122,7 @@ Input_classification classify_input(const TriangleMesh& tm,
       internal::get_or(np, internal_np::input_profile, Input_profile::automatic);
 
   Input_classification c;
-  c.faces = static_cast<std::size_t>(faces(tm).size());
+  c.faces = internal::face_count(tm);
   double sum = 0, sum2 = 0;
   std::size_t n_edges = 0, interior = 0, coplanar = 0, triangles = 0, skinny = 0;
   const double cos_coplanar = std::cos(0.01 * internal::pi / 180.);

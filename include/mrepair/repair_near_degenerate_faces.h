@@ -10,6 +10,7 @@
 #include <mrepair/report.h>
 #include <mrepair/status.h>
 #include <mrepair/visitors.h>
+#include <mrepair/internal/utility.h>
 
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/Named_function_parameters.h>
@@ -111,7 +112,7 @@ Near_degenerate_faces_result repair_near_degenerate_faces(
     TriangleMesh& tm, const CGAL_NP_CLASS& np = parameters::default_values())
 {
   Near_degenerate_faces_result failed;  // the face counts of an untouched mesh
-  failed.faces_before = failed.faces_after = faces(tm).size();
+  failed.faces_before = failed.faces_after = internal::face_count(tm);
   return internal::scan_clean::with_fresh_statistics(
       tm, np, failed, [&](auto& stats) { return repair_near_degenerate_faces(tm, stats, np); });
 }

@@ -8,6 +8,7 @@
 
 #include <mrepair/report.h>
 #include <mrepair/status.h>
+#include <mrepair/internal/utility.h>
 
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -50,10 +51,10 @@ Triangulation_result triangulate_polygons(PolygonMesh& pmesh)
   Triangulation_result t;
   for (auto f : faces(pmesh))
     if (CGAL::halfedges_around_face(halfedge(f, pmesh), pmesh).size() != 3) ++t.polygons;
-  t.faces_before = t.faces_after = static_cast<std::size_t>(faces(pmesh).size());
+  t.faces_before = t.faces_after = internal::face_count(pmesh);
   if (t.polygons == 0) return t;
   t.complete = CGAL::Polygon_mesh_processing::triangulate_faces(pmesh);
-  t.faces_after = static_cast<std::size_t>(faces(pmesh).size());
+  t.faces_after = internal::face_count(pmesh);
   if (!t.complete || !CGAL::is_triangle_mesh(pmesh)) {
     t.status = Status::invalid_mesh;
     t.message = "some of the " + std::to_string(t.polygons) +

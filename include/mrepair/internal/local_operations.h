@@ -52,23 +52,6 @@ struct Local_operation_counts
   std::size_t vertices_removed = 0;    ///< isolated, or left without a face
   std::size_t vertices_added = 0;
   std::size_t patches_inserted = 0;
-
-  Local_operation_counts operator-(const Local_operation_counts& o) const
-  {
-    Local_operation_counts d;
-    d.vertices_moved = vertices_moved - o.vertices_moved;
-    d.edges_collapsed = edges_collapsed - o.edges_collapsed;
-    d.edges_flipped = edges_flipped - o.edges_flipped;
-    d.edges_split = edges_split - o.edges_split;
-    d.faces_removed = faces_removed - o.faces_removed;
-    d.pinch_faces_removed = pinch_faces_removed - o.pinch_faces_removed;
-    d.pinches_resolved = pinches_resolved - o.pinches_resolved;
-    d.faces_added = faces_added - o.faces_added;
-    d.vertices_removed = vertices_removed - o.vertices_removed;
-    d.vertices_added = vertices_added - o.vertices_added;
-    d.patches_inserted = patches_inserted - o.patches_inserted;
-    return d;
-  }
 };
 
 /// True when a halfedge around `v` is a border halfedge (on both Surface_mesh
@@ -369,10 +352,10 @@ public:
       touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
       stats_->before_local_edit(touched);
     }
-    const std::size_t nv = static_cast<std::size_t>(vertices(pm_).size());
+    const std::size_t nv = internal::vertex_count(pm_);
     for (face_descriptor f : component_faces) CGAL::Euler::remove_face(halfedge(f, pm_), pm_);
     counts.faces_removed += component_faces.size();
-    counts.vertices_removed += nv - static_cast<std::size_t>(vertices(pm_).size());
+    counts.vertices_removed += nv - internal::vertex_count(pm_);
     if (stats_) stats_->after_local_edit(std::vector<vertex_descriptor>());
     return component_faces.size();
   }
@@ -398,11 +381,11 @@ public:
     if (stats_) stats_->before_local_edit(loop);
     Local_operations patch_ops(pm_, vpm_);
     std::vector<vertex_descriptor> added;
-    const std::size_t faces_before = static_cast<std::size_t>(faces(pm_).size());
-    const std::size_t vertices_before = static_cast<std::size_t>(vertices(pm_).size());
+    const std::size_t faces_before = internal::face_count(pm_);
+    const std::size_t vertices_before = internal::vertex_count(pm_);
     const bool done = build(patch_ops, loop, added);
-    const std::size_t faces_after = static_cast<std::size_t>(faces(pm_).size());
-    const std::size_t vertices_after = static_cast<std::size_t>(vertices(pm_).size());
+    const std::size_t faces_after = internal::face_count(pm_);
+    const std::size_t vertices_after = internal::vertex_count(pm_);
     if (faces_after >= faces_before) counts.faces_added += faces_after - faces_before;
     else counts.faces_removed += faces_before - faces_after;
     if (vertices_after >= vertices_before) counts.vertices_added += vertices_after - vertices_before;

@@ -8,7 +8,9 @@
 
 #include <mrepair/internal/coordinate_range.h>
 
+#include <CGAL/Polyhedron_3_fwd.h>
 #include <CGAL/Surface_mesh/Surface_mesh_fwd.h>
+#include <boost/graph/graph_traits.hpp>
 #include <CGAL/number_utils.h>
 #include <boost/property_map/property_map.hpp>
 
@@ -99,6 +101,35 @@ bool is_finite_point(const VertexPointMap& vpm, Vertex v)
 /// threads may write at distinct indices. `Polyhedron_3`'s are hash maps.
 template <typename T> struct Is_surface_mesh : std::false_type {};
 template <typename P> struct Is_surface_mesh<CGAL::Surface_mesh<P>> : std::true_type {};
+/// true for `CGAL::Polyhedron_3`.
+template <typename T> struct Is_polyhedron : std::false_type {};
+template <typename T, typename I, template <class, class, class> class H, typename A>
+struct Is_polyhedron<CGAL::Polyhedron_3<T, I, H, A>> : std::true_type {};
+
+/// the number of faces (vertices) of a mesh, in O(1) on Surface_mesh and
+/// Polyhedron_3. `faces(m).size()` walks the whole range (std::distance),
+/// and BGL's `num_faces()` counts a Surface_mesh's removed faces too:
+/// a local operation that asked for the count paid O(mesh) per call.
+template <typename Mesh>
+std::size_t face_count(const Mesh& m)
+{
+  if constexpr (Is_surface_mesh<Mesh>::value)
+    return static_cast<std::size_t>(m.number_of_faces());
+  else if constexpr (Is_polyhedron<Mesh>::value)
+    return static_cast<std::size_t>(m.size_of_facets());
+  else
+    return static_cast<std::size_t>(faces(m).size());
+}
+template <typename Mesh>
+std::size_t vertex_count(const Mesh& m)
+{
+  if constexpr (Is_surface_mesh<Mesh>::value)
+    return static_cast<std::size_t>(m.number_of_vertices());
+  else if constexpr (Is_polyhedron<Mesh>::value)
+    return static_cast<std::size_t>(m.size_of_vertices());
+  else
+    return static_cast<std::size_t>(vertices(m).size());
+}
 
 // ---- parallel loops ----------------------------------------------------------
 /// calls f(i) for i in [0, n), with TBB when it is linked and the range holds

@@ -4,6 +4,7 @@
 
 #include <mrepair/internal/inspect/parallel.h>
 #include <mrepair/internal/inspect/surface_arrays.h>
+#include <mrepair/internal/utility.h>
 
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
@@ -37,7 +38,7 @@ bool build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arrays
 
   // vertices: compact ids in iteration order
   std::vector<vertex_descriptor> V;
-  V.reserve(vertices(pm).size());
+  V.reserve(internal::vertex_count(pm));
   std::size_t vslots = 0;
   for (vertex_descriptor v : vertices(pm)) {
     V.push_back(v);
@@ -80,7 +81,7 @@ bool build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arrays
 
   // faces and corners: corner of halfedge h is source(h), its edge is edge(h)
   std::vector<face_descriptor> F;
-  F.reserve(faces(pm).size());
+  F.reserve(internal::face_count(pm));
   for (face_descriptor f : faces(pm)) F.push_back(f);
   const std::size_t nf = F.size();
   a.face_off.assign(nf + 1, 0);

@@ -53,9 +53,9 @@ Remeshing_result start_remeshing_result(const TriangleMesh& tm, Remesh_mode mode
   Remeshing_result res;
   res.mode = mode == Remesh_mode::uniform ? "uniform"
              : mode == Remesh_mode::adaptive ? "adaptive" : "face_count";
-  res.faces_before = static_cast<std::size_t>(faces(tm).size());
+  res.faces_before = internal::face_count(tm);
   res.faces_after = res.faces_before;
-  res.vertices_after = static_cast<std::size_t>(vertices(tm).size());
+  res.vertices_after = internal::vertex_count(tm);
   return res;
 }
 
@@ -163,7 +163,7 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
       R.set_uniform(L);
       st = R.run(std::max(o.iterations, 1), o.project, vis);
       for (int round = 0; round < 6 && st == Status::ok; ++round) {
-        double F = static_cast<double>(faces(tm).size() - outside);
+        double F = static_cast<double>(internal::face_count(tm) - outside);
         if (std::abs(F - N) <= 0.04 * N) break;
         L *= std::sqrt(F / N);
         R.set_uniform(L);
@@ -186,8 +186,8 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
   if (st == Status::partial)
     res.message = "operation budget spent before reaching the face count (surface too thin or "
                   "anisotropic for the target); the mesh is valid";
-  res.faces_after = static_cast<std::size_t>(faces(tm).size());
-  res.vertices_after = static_cast<std::size_t>(vertices(tm).size());
+  res.faces_after = internal::face_count(tm);
+  res.vertices_after = internal::vertex_count(tm);
   return res;
 }
 

@@ -27,7 +27,7 @@ namespace scan_clean {
 template <typename Mesh, typename VPM>
 Status check_input(const Mesh& m, const VPM& vpm, std::string& message)
 {
-  if (faces(m).size() == 0) {
+  if (internal::face_count(m) == 0) {
     message = "the mesh has no faces";
     return Status::empty_input;
   }

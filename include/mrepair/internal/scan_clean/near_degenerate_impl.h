@@ -336,12 +336,12 @@ Near_degenerate_faces_result repair_near_degenerate_faces_with(
 {
   Near_degenerate_faces_result r;
   Mesh& tm = ops.mesh();
-  r.faces_before = faces(tm).size();
+  r.faces_before = internal::face_count(tm);
   std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor> flagged;
   r.near_degenerate_faces_before = count_near_degenerate_faces(st, s, &flagged);
   Near_degenerate_repairer<Mesh, VPM, VisitorHandle> worker(ops, st, vis, s, r);
   worker.run(flagged);
-  r.faces_after = faces(tm).size();
+  r.faces_after = internal::face_count(tm);
   r.near_degenerate_faces_after = count_near_degenerate_faces(st, s);
   if (worker.cancelled()) {
     r.status = Status::cancelled;

@@ -1,0 +1,389 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Tasks "job" and "job-soup": the whole command a user times, file in to file
+// out, beside the whole CGAL 5.5 chain for the same job, file I/O included on
+// both sides.
+//   job:      `mrepair repair INPUT OUT.ply --binary` (defaults: the inspection
+//             report before and after, self-intersections counted) vs
+//             CGAL::IO::read_polygon_soup, repair_polygon_soup,
+//             orient_polygon_soup, polygon_soup_to_polygon_mesh,
+//             duplicate_non_manifold_vertices, remove_isolated_vertices,
+//             keep_large_connected_components (400),
+//             triangulate_refine_and_fair_hole (loops < 100 vertices),
+//             experimental::remove_almost_degenerate_faces,
+//             experimental::remove_self_intersections, write_polygon_mesh.
+//   job-soup: `mrepair soup INPUT OUT.off` vs read_polygon_soup,
+//             repair_polygon_soup, orient_polygon_soup,
+//             polygon_soup_to_polygon_mesh, stitch_borders,
+//             duplicate_non_manifold_vertices, write_polygon_mesh.
+// The mrepair side runs the `mrepair` program as a child process (found
+// beside the harness in the build tree, tools/mrepair, or in $MREPAIR_CLI);
+// its phase breakdown is every "...seconds" field of its JSON report. The
+// CGAL side runs in the harness's own forked child, timed from before the
+// read to after the write; its phases are timed one by one. Both outputs are
+// read back and inspected by the same code (mrepair::inspect), untimed.
+#include "bench.h"
+
+#include <mrepair/inspect.h>
+#include <mrepair/io.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/polygon_mesh_io.h>
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair.h>
+#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/repair_self_intersections.h>
+#include <CGAL/Polygon_mesh_processing/stitch_borders.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/Real_timer.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <spawn.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+using K = CGAL::Epick;
+using Point = K::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+using Polygon = std::vector<std::size_t>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+constexpr std::size_t kMinComponent = 400;  // as `mrepair repair` on a scan
+constexpr std::size_t kMaxHole = 100;
+
+// A scratch directory for the outputs, removed with its files on exit.
+struct Scratch
+{
+  std::string dir;
+  Scratch()
+  {
+    char tmpl[] = "/tmp/mrepair-bench-job-XXXXXX";
+    if (mkdtemp(tmpl)) dir = tmpl;
+  }
+  ~Scratch()
+  {
+    if (!dir.empty()) std::system(("rm -rf '" + dir + "'").c_str());
+  }
+  std::string file(const std::string& name) const { return dir + "/" + name; }
+};
+
+std::string mrepair_program()
+{
+  if (const char* env = std::getenv("MREPAIR_CLI")) return env;
+  char buf[4096];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
+  if (n <= 0) return "mrepair";
+  std::string self(buf, static_cast<std::size_t>(n));
+  const std::string dir = self.substr(0, self.find_last_of('/'));  // <build>/benchmark
+  return dir.substr(0, dir.find_last_of('/')) + "/tools/mrepair";
+}
+
+// Runs `argv` as a child process; wall seconds, exit status and the child's
+// peak resident set (wait4) come back.
+struct Child_run
+{
+  double seconds = 0;
+  int exit_code = -1;
+  double peak_mb = 0;
+};
+
+Child_run run_child(const std::vector<std::string>& args)
+{
+  Child_run c;
+  std::vector<char*> argv;
+  for (const std::string& s : args) argv.push_back(const_cast<char*>(s.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  CGAL::Real_timer t;
+  t.start();
+  pid_t pid = 0;
+  const int err = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (err != 0) return c;
+  int status = 0;
+  rusage ru{};
+  wait4(pid, &status, 0, &ru);
+  t.stop();
+  c.seconds = t.time();
+  c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  c.peak_mb = ru.ru_maxrss / 1024.0;
+  return c;
+}
+
+// Every number of a JSON document whose key ends in "seconds", with its
+// dotted path ("clean.steps.relax_spikes.seconds"): the phase breakdown the
+// program reported. A small reader of the subset our reports use.
+class Seconds_reader
+{
+  const std::string& s_;
+  std::size_t i_ = 0;
+  mrepair::Report& out_;
+
+  void skip() { while (i_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[i_]))) ++i_; }
+  std::string string()
+  {
+    std::string r;
+    ++i_;  // opening quote
+    while (i_ < s_.size() && s_[i_] != '"') {
+      if (s_[i_] == '\\') ++i_;
+      if (i_ < s_.size()) r += s_[i_++];
+    }
+    ++i_;
+    return r;
+  }
+  void value(const std::string& path, const std::string& key)
+  {
+    skip();
+    if (i_ >= s_.size()) return;
+    const char c = s_[i_];
+    if (c == '{') {
+      ++i_;
+      for (skip(); i_ < s_.size() && s_[i_] != '}'; skip()) {
+        if (s_[i_] == ',') { ++i_; continue; }
+        const std::string k = string();
+        skip();
+        ++i_;  // ':'
+        value(path.empty() ? k : path + "." + k, k);
+      }
+      ++i_;
+    } else if (c == '[') {
+      ++i_;
+      for (skip(); i_ < s_.size() && s_[i_] != ']'; skip()) {
+        if (s_[i_] == ',') { ++i_; continue; }
+        value(path + "[]", key);
+      }
+      ++i_;
+    } else if (c == '"') {
+      string();
+    } else {
+      const std::size_t b = i_;
+      while (i_ < s_.size() && s_[i_] != ',' && s_[i_] != '}' && s_[i_] != ']' &&
+             !std::isspace(static_cast<unsigned char>(s_[i_])))
+        ++i_;
+      const std::string tok = s_.substr(b, i_ - b);
+      const std::string suffix = "seconds";
+      if (key.size() >= suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+          path.find("[]") == std::string::npos) {
+        char* end = nullptr;
+        const double v = std::strtod(tok.c_str(), &end);
+        if (end != tok.c_str()) out_.add(path, v);
+      }
+    }
+  }
+
+public:
+  Seconds_reader(const std::string& s, mrepair::Report& out) : s_(s), out_(out) {}
+  void run() { value("", ""); }
+};
+
+std::string slurp(const std::string& path)
+{
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// The table both sides get, from the same code, on the file each wrote.
+void inspect_file(const std::string& path, mrepair::Report& r, bool self_intersections)
+{
+  Mesh m;
+  mrepair::Io_result io = mrepair::read_polygon_mesh(path, m);
+  if (io.status != mrepair::Status::ok) {
+    r.add("read_back", mrepair::to_string(io.status));
+    return;
+  }
+  const mrepair::Inspection_report i = mrepair::inspect(
+      m, mrepair::parameters::count_self_intersections(self_intersections));
+  r.add("faces", i.faces);
+  r.add("valid", CGAL::is_valid_polygon_mesh(m));
+  r.add("closed", CGAL::is_closed(m));
+  r.add("components", i.connected_components);
+  r.add("small_components", i.small_components);
+  r.add("boundary_loops", i.boundary_loops);
+  r.add("small_holes", i.small_holes);
+  r.add("non_manifold_vertices", i.non_manifold_vertices);
+  r.add("near_degenerate_faces", i.near_degenerate_faces);
+  r.add("spiked_vertices", i.spiked_vertices);
+  if (self_intersections) r.add("self_intersecting_pairs", i.self_intersecting_pairs);
+}
+
+mrepair::bench::Measurement run_mrepair(const std::string& input, const char* command,
+                                        const char* output_name, bool binary)
+{
+  mrepair::bench::Measurement out;
+  Scratch dir;
+  const std::string output = dir.file(output_name), report = dir.file("report.json");
+  std::vector<std::string> args = {mrepair_program(), command, input, output, "--report", report, "--quiet"};
+  if (binary) args.push_back("--binary");
+  const Child_run c = run_child(args);
+  out.seconds = c.seconds;
+  out.result.add("program", args[0]);
+  out.result.add("exit_code", c.exit_code);
+  out.result.add("process_peak_mb", c.peak_mb);
+  if (c.exit_code != 0) {
+    out.status = "exit " + std::to_string(c.exit_code);
+    return out;
+  }
+  Seconds_reader(slurp(report), out.result.section("phases")).run();
+  inspect_file(output, out.after, true);
+  return out;
+}
+
+// CGAL has no guard against non-finite points or bad indices: a user must
+// drop those polygons before the chain (timed, as it is part of the job).
+std::size_t drop_unusable_polygons(const std::vector<Point>& pts, std::vector<Polygon>& polys)
+{
+  std::vector<Polygon> kept;
+  kept.reserve(polys.size());
+  for (Polygon& p : polys) {
+    bool ok = p.size() >= 3;
+    for (std::size_t i : p)
+      ok = ok && i < pts.size() && std::isfinite(pts[i].x()) && std::isfinite(pts[i].y()) &&
+           std::isfinite(pts[i].z());
+    if (ok) kept.push_back(std::move(p));
+  }
+  const std::size_t dropped = polys.size() - kept.size();
+  polys.swap(kept);
+  return dropped;
+}
+
+// Times each phase into `r` as "<name>_s".
+struct Phases
+{
+  mrepair::Report& r;
+  template <typename F>
+  auto operator()(const char* name, F&& f)
+  {
+    CGAL::Real_timer t;
+    t.start();
+    auto v = f();
+    t.stop();
+    r.add(std::string(name) + "_s", t.time());
+    return v;
+  }
+};
+
+mrepair::bench::Measurement run_cgal(const std::string& input, bool scan)
+{
+  mrepair::bench::Measurement out;
+  Scratch dir;
+  const std::string output = dir.file(scan ? "out.ply" : "out.off");
+  Phases phase{out.result};
+  CGAL::Real_timer total;
+  total.start();
+  std::vector<Point> pts;
+  std::vector<Polygon> polys;
+  if (!phase("read_polygon_soup", [&] { return CGAL::IO::read_polygon_soup(input, pts, polys); })) {
+    out.status = "read failed";
+    return out;
+  }
+  out.result.add("polygons_dropped",
+                 phase("drop_non_finite", [&] { return drop_unusable_polygons(pts, polys); }));
+  phase("repair_polygon_soup", [&] {
+    PMP::repair_polygon_soup(pts, polys);
+    return 0;
+  });
+  out.result.add("oriented", phase("orient_polygon_soup", [&] { return PMP::orient_polygon_soup(pts, polys); }));
+  Mesh m;
+  const bool is_mesh = phase("polygon_soup_to_polygon_mesh", [&] {
+    if (!PMP::is_polygon_soup_a_polygon_mesh(polys)) return false;
+    PMP::polygon_soup_to_polygon_mesh(pts, polys, m);
+    return true;
+  });
+  pts.clear();
+  polys.clear();
+  if (!is_mesh) {
+    out.status = "not_a_mesh";
+    return out;
+  }
+  if (!scan) out.result.add("stitched", phase("stitch_borders", [&] { return PMP::stitch_borders(m); }));
+  out.result.add("non_manifold_duplicated", phase("duplicate_non_manifold_vertices", [&] {
+                   return PMP::duplicate_non_manifold_vertices(m);
+                 }));
+  if (scan) {
+    phase("remove_isolated_vertices", [&] { return PMP::remove_isolated_vertices(m); });
+    phase("keep_large_connected_components",
+          [&] { return PMP::keep_large_connected_components(m, kMinComponent); });
+    out.result.add("holes_filled", phase("triangulate_refine_and_fair_hole", [&] {
+      std::vector<Mesh::Halfedge_index> loops;
+      PMP::extract_boundary_cycles(m, std::back_inserter(loops));
+      std::size_t filled = 0;
+      for (auto h : loops) {
+        std::size_t n = 0;
+        for (auto g : CGAL::halfedges_around_face(h, m)) { (void)g; ++n; }
+        if (n >= kMaxHole) continue;
+        std::vector<Mesh::Face_index> fs;
+        std::vector<Mesh::Vertex_index> vs;
+        filled += std::get<0>(PMP::triangulate_refine_and_fair_hole(m, h, std::back_inserter(fs),
+                                                                     std::back_inserter(vs)));
+      }
+      return filled;
+    }));
+    const double mean = phase("mean_edge_length", [&] {
+      double sum = 0;
+      for (auto e : edges(m))
+        sum += std::sqrt(CGAL::squared_distance(m.point(source(e, m)), m.point(target(e, m))));
+      return sum / double(std::max<std::size_t>(1, m.number_of_edges()));
+    });
+    out.result.add("remove_almost_degenerate_faces_ok", phase("remove_almost_degenerate_faces", [&] {
+      return PMP::experimental::remove_almost_degenerate_faces(m, std::cos(160.0 / 180.0 * CGAL_PI), 4.0,
+                                                               0.5 * mean);
+    }));
+    out.result.add("remove_self_intersections_ok", phase("remove_self_intersections", [&] {
+      return PMP::experimental::remove_self_intersections(m);
+    }));
+    m.collect_garbage();
+  }
+  const bool written = phase("write_polygon_mesh", [&] {
+    return scan ? CGAL::IO::write_polygon_mesh(output, m, CGAL::parameters::use_binary_mode(true))
+                : CGAL::IO::write_polygon_mesh(output, m, CGAL::parameters::stream_precision(17));
+  });
+  total.stop();
+  out.seconds = total.time();
+  if (!written) out.status = "write failed";
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  out.result.add("process_peak_mb", ru.ru_maxrss / 1024.0);
+  m.clear();
+  inspect_file(output, out.after, true);
+  return out;
+}
+
+mrepair::bench::Task_registrar job{
+    {"job",
+     "whole command with file I/O: `mrepair repair` vs the CGAL soup + cleaning chain with its "
+     "experimental stages (run `mrepair` from $MREPAIR_CLI or <build>/tools)",
+     {{"mrepair repair (process)",
+       [](const std::string& p) { return run_mrepair(p, "repair", "out.ply", true); }},
+      {"CGAL chain + experimental (process)", [](const std::string& p) { return run_cgal(p, true); }}}}};
+
+mrepair::bench::Task_registrar job_soup{
+    {"job-soup",
+     "whole command with file I/O: `mrepair soup` vs the CGAL soup chain (repair, orient, build, "
+     "stitch, split non-manifold vertices)",
+     {{"mrepair soup (process)",
+       [](const std::string& p) { return run_mrepair(p, "soup", "out.off", false); }},
+      {"CGAL chain (process)", [](const std::string& p) { return run_cgal(p, false); }}}}};
+
+}  // namespace
