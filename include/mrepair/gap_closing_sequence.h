@@ -59,7 +59,8 @@ struct Gap_contraction_record
 /// \code
 ///   mrepair-gap-sequence 1
 ///   input <vertices> <faces> <fingerprint: 16 hex digits>
-///   region <fingerprint: 16 hex digits>            (0000000000000000: the whole mesh)
+///   region <fingerprint: 16 hex digits>            (of the input boundary vertices left out
+///                                                   of the region; 0000000000000000: none)
 ///   tolerance <absolute distance limit>
 ///   lambda <lambda>
 ///   snap <snap distance; -1: the tolerance>
@@ -161,6 +162,21 @@ struct Gap_sequence_file
     if (ln != "mrepair-gap-sequence " + std::to_string(format_version))
       return fail("unsupported version '" + ln.substr(21) + "' (this build reads version " +
                   std::to_string(format_version) + ")");
+    // the last line: the checksum of everything before it (checked before the content)
+    const std::size_t last = text.size() >= 2 ? text.rfind('\n', text.size() - 2) + 1 : 0;
+    const std::size_t body = last;
+    std::uint64_t sum = 0;
+    {
+      const std::string tail = text.substr(last);
+      if (text.back() != '\n' || tail.compare(0, 4, "end ") != 0 || !hex(tail.substr(4, tail.size() - 5), sum)) {
+        error = "the file is truncated (no 'end <checksum>' line at its end)";
+        return Status::parse_error;
+      }
+      if (sum != checksum(text.substr(0, body))) {
+        error = "checksum mismatch: the file is corrupt";
+        return Status::parse_error;
+      }
+    }
     if (!expect("input", 3) || !count(f[1], input_vertices) || !count(f[2], input_faces) ||
         !hex(f[3], input_fingerprint))
       return fail("expected 'input <vertices> <faces> <fingerprint>'");
@@ -189,13 +205,7 @@ struct Gap_sequence_file
       last = c.distance;
       contractions.push_back(c);
     }
-    const std::size_t body = at;
-    std::uint64_t sum = 0;
-    if (!expect("end", 1) || !hex(f[1], sum))
-      return fail("expected 'end <checksum>' (file truncated?)");
-    if (sum != checksum(text.substr(0, body)))
-      return fail("checksum mismatch: the file is corrupt");
-    if (at != text.size()) return fail("unexpected data after 'end'");
+    if (at != body) return fail("unexpected data after the contractions");
     return Status::ok;
   }
 
@@ -340,13 +350,13 @@ public:
     }
     if (internal::get_or(np, inp::gap_fingerprint_input, false)) fingerprint_input();
     // the region: a vertex is in it when selected, or when one of its faces is
-    // (each answer also goes into the region fingerprint)
+    // (the boundary vertices left out go into the region fingerprint: 0 when none is)
     auto note = [this](vertex_descriptor v, bool in) {
+      if (in) return true;
       const Point& p = get(vpm_, v);
-      file_.region_fingerprint +=
-          internal::gap_mix(internal::gap_hash_point(CGAL::to_double(p.x()), CGAL::to_double(p.y()),
-                                                     CGAL::to_double(p.z())) + (in ? 1 : 2));
-      return in;
+      file_.region_fingerprint += internal::gap_mix(internal::gap_hash_point(
+          CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())));
+      return false;
     };
     if constexpr (!is_default_parameter<NamedParameters, inp::gap_vertex_selection_t>::value) {
       auto m = get_parameter(np, inp::gap_vertex_selection);
