@@ -163,11 +163,10 @@ struct Gap_sequence_file
       return fail("unsupported version '" + ln.substr(21) + "' (this build reads version " +
                   std::to_string(format_version) + ")");
     // the last line: the checksum of everything before it (checked before the content)
-    const std::size_t last = text.size() >= 2 ? text.rfind('\n', text.size() - 2) + 1 : 0;
-    const std::size_t body = last;
+    const std::size_t body = text.size() >= 2 ? text.rfind('\n', text.size() - 2) + 1 : 0;
     std::uint64_t sum = 0;
     {
-      const std::string tail = text.substr(last);
+      const std::string tail = text.substr(body);
       if (text.back() != '\n' || tail.compare(0, 4, "end ") != 0 || !hex(tail.substr(4, tail.size() - 5), sum)) {
         error = "the file is truncated (no 'end <checksum>' line at its end)";
         return Status::parse_error;
