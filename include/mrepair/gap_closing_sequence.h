@@ -68,10 +68,18 @@ struct Gap_contraction_record
 ///   c <distance> <x> <y> <z>                        (n lines, in order)
 ///   end <FNV-1a 64 of every byte before this line: 16 hex digits>
 /// \endcode
-/// The fingerprints do not depend on the order of vertices and faces (sums of
-/// hashes of the bit patterns of the positions, and of each face's three
-/// positions in cyclic order), so a file written from a `Surface_mesh` replays
-/// on a `Polyhedron_3` read from the same file and vice versa.
+/// `x y z`: the new position of the vertex that moved (vertex-vertex: the one
+/// kept; vertex-edge: the one inserted into the edge). The fingerprints do not
+/// depend on the order of vertices and faces (sums of hashes of the bit
+/// patterns of the positions, and of each face's three positions in cyclic
+/// order).
+///
+/// `Gap_closing_sequence::replay()` runs the algorithm again and checks every
+/// contraction against the file (it costs what the first run cost): a file
+/// replays on the same mesh type read from the same input by the same version
+/// of the algorithm; anything else is refused with the first contraction that
+/// differs (ties between equal distances may be broken differently on another
+/// mesh type).
 struct Gap_sequence_file
 {
   static constexpr int format_version = 1;
