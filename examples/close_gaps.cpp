@@ -75,6 +75,11 @@ int main(int argc, char** argv)
     print("back to the input", mesh, seq);
   }
 
+  // Stepping back left removed elements in the Surface_mesh (garbage): the
+  // one-shot closing counts faces with num_faces(), which includes them, and
+  // would refuse the mesh as invalid_mesh. Compact it first.
+  mesh.collect_garbage();
+
   // one shot (also splits vertices left with several fans)
   mrepair::Gap_closing_result r = mrepair::close_gaps(mesh, tolerance, MP::gap_relative_tolerance(true));
   mrepair::Report report;

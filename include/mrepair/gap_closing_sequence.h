@@ -16,8 +16,20 @@
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/boost/graph/properties.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <istream>
+#include <memory>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <vector>
 
 // Algorithm-specific named parameters (see close_gaps.h for their meaning).
 MREPAIR_ADD_NAMED_PARAMETER(gap_lambda)                 // in [0,1], merged position λv+(1-λ)v'
@@ -27,8 +39,239 @@ MREPAIR_ADD_NAMED_PARAMETER(gap_vertex_selection)       // vertex property map o
 MREPAIR_ADD_NAMED_PARAMETER(gap_face_selection)         // face property map of bool (region)
 MREPAIR_ADD_NAMED_PARAMETER(gap_split_pinched_vertices) // bool: close_gaps makes the output manifold
 MREPAIR_ADD_NAMED_PARAMETER(gap_max_operations)         // std::size_t cap on contractions
+MREPAIR_ADD_NAMED_PARAMETER(gap_fingerprint_input)      // bool: hash the input so that save() works
 
 namespace mrepair {
+
+/// \ingroup mrepair_gaps
+/// one recorded contraction of a `Gap_closing_sequence`.
+struct Gap_contraction_record
+{
+  double distance = 0;                  ///< error level after it (running maximum of pair distances)
+  std::array<double, 3> position{{0, 0, 0}};  ///< where the contracted vertex went
+};
+
+/// \ingroup mrepair_gaps
+/// the content of a gap sequence file (`Gap_closing_sequence::save()`).
+///
+/// Format, version 1: UTF-8 text, one item per line, numbers written with 17
+/// significant digits (they read back bit-identical):
+/// \code
+///   mrepair-gap-sequence 1
+///   input <vertices> <faces> <fingerprint: 16 hex digits>
+///   region <fingerprint: 16 hex digits>            (of the input boundary vertices left out
+///                                                   of the region; 0000000000000000: none)
+///   tolerance <absolute distance limit>
+///   lambda <lambda>
+///   snap <snap distance; -1: the tolerance>
+///   contractions <n>
+///   c <distance> <x> <y> <z>                        (n lines, in order)
+///   end <FNV-1a 64 of every byte before this line: 16 hex digits>
+/// \endcode
+/// `x y z`: the new position of the vertex that moved (vertex-vertex: the one
+/// kept; vertex-edge: the one inserted into the edge). The fingerprints do not
+/// depend on the order of vertices and faces (sums of hashes of the bit
+/// patterns of the positions, and of each face's three positions in cyclic
+/// order).
+///
+/// `Gap_closing_sequence::replay()` runs the algorithm again and checks every
+/// contraction against the file (it costs what the first run cost): a file
+/// replays on the same mesh type read from the same input by the same version
+/// of the algorithm; anything else is refused with the first contraction that
+/// differs (ties between equal distances may be broken differently on another
+/// mesh type).
+struct Gap_sequence_file
+{
+  static constexpr int format_version = 1;
+  std::size_t input_vertices = 0, input_faces = 0;
+  std::uint64_t input_fingerprint = 0, region_fingerprint = 0;
+  double tolerance = 0, lambda = 0.5, snap = -1;
+  std::vector<Gap_contraction_record> contractions;
+
+  /// writes the file; false when the stream fails.
+  bool write(std::ostream& out) const
+  {
+    std::string s;
+    char buf[160];
+    auto line = [&](const char* fmt, auto... args) {
+      std::snprintf(buf, sizeof buf, fmt, args...);
+      s += buf;
+    };
+    line("mrepair-gap-sequence %d\n", format_version);
+    line("input %zu %zu %016llx\n", input_vertices, input_faces, (unsigned long long)input_fingerprint);
+    line("region %016llx\n", (unsigned long long)region_fingerprint);
+    line("tolerance %.17g\n", tolerance);
+    line("lambda %.17g\n", lambda);
+    line("snap %.17g\n", snap);
+    line("contractions %zu\n", contractions.size());
+    for (const Gap_contraction_record& c : contractions)
+      line("c %.17g %.17g %.17g %.17g\n", c.distance, c.position[0], c.position[1], c.position[2]);
+    line("end %016llx\n", (unsigned long long)checksum(s));
+    out << s;
+    return bool(out);
+  }
+
+  /// reads a file written by `write()`. Returns `Status::ok`, or
+  /// `Status::parse_error` (with `error`: the line and what is wrong) for a file
+  /// that is not a gap sequence, of another version, truncated or corrupt, or
+  /// `Status::io_error` when the stream fails.
+  Status read(std::istream& in, std::string& error)
+  {
+    std::ostringstream all;
+    all << in.rdbuf();
+    if (in.bad()) {
+      error = "cannot read the sequence";
+      return Status::io_error;
+    }
+    const std::string text = all.str();
+    std::size_t at = 0, lineno = 0;
+    std::string ln;
+    auto next_line = [&]() {
+      if (at >= text.size()) return false;
+      std::size_t e = text.find('\n', at);
+      if (e == std::string::npos) return false;  // a last line without newline: truncated
+      ln.assign(text, at, e - at);
+      at = e + 1;
+      ++lineno;
+      return true;
+    };
+    auto fail = [&](const std::string& what) {
+      error = "line " + std::to_string(lineno) + ": " + what;
+      return Status::parse_error;
+    };
+    // fields of the current line after the keyword
+    std::vector<std::string> f;
+    auto expect = [&](const char* keyword, std::size_t n) {
+      if (!next_line()) return false;
+      f.clear();
+      std::istringstream ss(ln);
+      std::string w;
+      while (ss >> w) f.push_back(w);
+      return !f.empty() && f[0] == keyword && f.size() == n + 1;
+    };
+    auto num = [](const std::string& w, double& v) {
+      char* e = nullptr;
+      v = std::strtod(w.c_str(), &e);
+      return e != w.c_str() && *e == '\0' && std::isfinite(v);
+    };
+    auto count = [](const std::string& w, std::size_t& v) {
+      if (w.empty() || w.size() > 18 || w.find_first_not_of("0123456789") != std::string::npos)
+        return false;
+      v = std::size_t(std::strtoull(w.c_str(), nullptr, 10));
+      return true;
+    };
+    auto hex = [](const std::string& w, std::uint64_t& v) {
+      if (w.size() != 16 || w.find_first_not_of("0123456789abcdef") != std::string::npos) return false;
+      v = std::strtoull(w.c_str(), nullptr, 16);
+      return true;
+    };
+    if (!next_line() || ln.compare(0, 21, "mrepair-gap-sequence ") != 0)
+      return fail("not a gap sequence file (no 'mrepair-gap-sequence' header)");
+    if (ln != "mrepair-gap-sequence " + std::to_string(format_version))
+      return fail("unsupported version '" + ln.substr(21) + "' (this build reads version " +
+                  std::to_string(format_version) + ")");
+    // the last line: the checksum of everything before it (checked before the content)
+    const std::size_t body = text.size() >= 2 ? text.rfind('\n', text.size() - 2) + 1 : 0;
+    std::uint64_t sum = 0;
+    {
+      const std::string tail = text.substr(body);
+      if (text.back() != '\n' || tail.compare(0, 4, "end ") != 0 || !hex(tail.substr(4, tail.size() - 5), sum)) {
+        error = "the file is truncated (no 'end <checksum>' line at its end)";
+        return Status::parse_error;
+      }
+      if (sum != checksum(text.substr(0, body))) {
+        error = "checksum mismatch: the file is corrupt";
+        return Status::parse_error;
+      }
+    }
+    if (!expect("input", 3) || !count(f[1], input_vertices) || !count(f[2], input_faces) ||
+        !hex(f[3], input_fingerprint))
+      return fail("expected 'input <vertices> <faces> <fingerprint>'");
+    if (!expect("region", 1) || !hex(f[1], region_fingerprint))
+      return fail("expected 'region <fingerprint>'");
+    if (!expect("tolerance", 1) || !num(f[1], tolerance) || tolerance < 0)
+      return fail("expected 'tolerance <finite distance >= 0>'");
+    if (!expect("lambda", 1) || !num(f[1], lambda) || lambda < 0 || lambda > 1)
+      return fail("expected 'lambda <number in [0,1]>'");
+    if (!expect("snap", 1) || !num(f[1], snap)) return fail("expected 'snap <number>'");
+    std::size_t n = 0;
+    if (!expect("contractions", 1) || !count(f[1], n)) return fail("expected 'contractions <count>'");
+    // every contraction line has at least 10 bytes: a count beyond that is corrupt
+    if (n > text.size() / 10) return fail("contraction count " + f[1] + " exceeds the file");
+    contractions.clear();
+    contractions.reserve(n);
+    double last = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      Gap_contraction_record c;
+      if (!expect("c", 4) || !num(f[1], c.distance) || !num(f[2], c.position[0]) ||
+          !num(f[3], c.position[1]) || !num(f[4], c.position[2]))
+        return fail("expected contraction " + std::to_string(i + 1) + " of " + std::to_string(n) +
+                    " as 'c <distance> <x> <y> <z>'" + (at >= text.size() ? " (file truncated)" : ""));
+      if (c.distance < last || c.distance > tolerance)
+        return fail("contraction distances must increase and stay within the tolerance");
+      last = c.distance;
+      contractions.push_back(c);
+    }
+    if (at != body) return fail("unexpected data after the contractions");
+    return Status::ok;
+  }
+
+  /// FNV-1a 64 of `s`.
+  static std::uint64_t checksum(const std::string& s)
+  {
+    std::uint64_t h = 1469598103934665603ull;
+    for (unsigned char ch : s) {
+      h ^= ch;
+      h *= 1099511628211ull;
+    }
+    return h;
+  }
+};
+
+namespace internal {
+
+// 64-bit mix (splitmix64 finaliser)
+inline std::uint64_t gap_mix(std::uint64_t x)
+{
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+inline std::uint64_t gap_hash_point(double x, double y, double z)
+{
+  auto bits = [](double d) {
+    if (d == 0) d = 0;  // -0 and +0 alike
+    std::uint64_t b;
+    std::memcpy(&b, &d, sizeof b);
+    return b;
+  };
+  return gap_mix(bits(x) ^ gap_mix(bits(y) ^ gap_mix(bits(z))));
+}
+
+// The vertex point map the sequence hands its worker: it forwards to `base`
+// and keeps the last position written. The last write of a contraction is
+// the position of the contracted vertex.
+template <class VertexPointMap>
+struct Gap_recording_point_map
+{
+  using key_type = typename boost::property_traits<VertexPointMap>::key_type;
+  using value_type = typename boost::property_traits<VertexPointMap>::value_type;
+  using reference = typename boost::property_traits<VertexPointMap>::reference;
+  using category = boost::read_write_property_map_tag;
+
+  VertexPointMap base;
+  value_type* last = nullptr;
+
+  friend reference get(const Gap_recording_point_map& m, const key_type& k) { return get(m.base, k); }
+  friend void put(const Gap_recording_point_map& m, const key_type& k, const value_type& p)
+  {
+    put(m.base, k, p);
+    *m.last = p;
+  }
+};
+
+} // namespace internal
 
 /// \ingroup mrepair_gaps
 /// the progressive gap closing of Borodin, Novotni and Klein as an object that
@@ -70,6 +313,9 @@ class Gap_closing_sequence
 {
   using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
   using halfedge_descriptor = typename boost::graph_traits<TriangleMesh>::halfedge_descriptor;
+  using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
+  using Point = typename boost::property_traits<VertexPointMap>::value_type;
+  using Recording_map = internal::Gap_recording_point_map<VertexPointMap>;
 
 public:
   /// prepares the pairs of `tm` for closing gaps up to `max_distance`.
@@ -80,16 +326,21 @@ public:
   ///   projection closer than min(snap, edge length / 3) to an edge end snaps to it),
   ///   `gap_vertex_selection(map)` / `gap_face_selection(map)` (bool property maps:
   ///   only boundary vertices of the region, and edges with both ends in it, are paired;
-  ///   a vertex is in a face region when one of its faces is selected; default all).
+  ///   a vertex is in a face region when one of its faces is selected; default all),
+  ///   `gap_fingerprint_input(bool)` (false: hash the input, O(size), so that `save()`
+  ///   can write a file that `replay()` checks against its mesh).
   /// \pre `CGAL::is_valid_polygon_mesh(tm)` (checked in debug builds only: the check costs
   ///   more than the closing). Bad data (no face, NaN/infinite coordinate, a non-triangle face,
   ///   bad parameters) sets `status()` and makes every step a no-op.
   template <class NamedParameters = CGAL::parameters::Default_named_parameters>
   Gap_closing_sequence(TriangleMesh& tm, double max_distance,
                        const NamedParameters& np = CGAL::parameters::default_values())
-    : closer_(tm, CGAL::parameters::choose_parameter(
-                      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
-                      get_property_map(CGAL::vertex_point, tm)))
+    : tm_(tm),
+      vpm_(CGAL::parameters::choose_parameter(
+          CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+          get_property_map(CGAL::vertex_point, tm))),
+      last_(new Point()),
+      closer_(tm, Recording_map{vpm_, last_.get()})
   {
     namespace inp = mrepair::internal_np;
     using CGAL::parameters::get_parameter;
@@ -97,28 +348,43 @@ public:
     const double lambda = internal::get_or(np, inp::gap_lambda, 0.5);
     const bool relative = internal::get_or(np, inp::gap_relative_tolerance, false);
     const double snap = internal::get_or(np, inp::gap_snap_distance, -1.0);
+    file_.lambda = lambda;
+    file_.snap = snap;
     if (!std::isfinite(max_distance) || max_distance < 0 || !(lambda >= 0 && lambda <= 1) ||
         !std::isfinite(snap)) {
       closer_.refuse(Status::invalid_parameter, "tolerance must be finite and >= 0, gap_lambda in [0,1]");
       return;
     }
+    if (internal::get_or(np, inp::gap_fingerprint_input, false)) fingerprint_input();
     // the region: a vertex is in it when selected, or when one of its faces is
+    // (the boundary vertices left out go into the region fingerprint: 0 when none is)
+    auto note = [this](vertex_descriptor v, bool in) {
+      if (in) return true;
+      const Point& p = get(vpm_, v);
+      file_.region_fingerprint += internal::gap_mix(internal::gap_hash_point(
+          CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())));
+      return false;
+    };
     if constexpr (!is_default_parameter<NamedParameters, inp::gap_vertex_selection_t>::value) {
       auto m = get_parameter(np, inp::gap_vertex_selection);
       closer_.start(max_distance, lambda, relative, snap,
-                    [m](vertex_descriptor v, const TriangleMesh&) { return bool(get(m, v)); });
+                    [m, note](vertex_descriptor v, const TriangleMesh&) { return note(v, bool(get(m, v))); });
     } else if constexpr (!is_default_parameter<NamedParameters, inp::gap_face_selection_t>::value) {
       auto m = get_parameter(np, inp::gap_face_selection);
-      closer_.start(max_distance, lambda, relative, snap, [m](vertex_descriptor v, const TriangleMesh& g) {
+      closer_.start(max_distance, lambda, relative, snap, [m, note](vertex_descriptor v, const TriangleMesh& g) {
         bool in = false;
         for (halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(v, g), g))
           if (!is_border(h, g) && get(m, face(h, g))) in = true;
-        return in;
+        return note(v, in);
       });
     } else {
       closer_.start(max_distance, lambda, relative, snap, internal::Gap_whole_mesh());
     }
+    file_.tolerance = closer_.max_distance();
   }
+
+  Gap_closing_sequence(const Gap_closing_sequence&) = delete;
+  Gap_closing_sequence& operator=(const Gap_closing_sequence&) = delete;
 
   /// `Status::ok`, or why the input was refused (then every step is a no-op).
   Status status() const { return closer_.status(); }
@@ -130,23 +396,160 @@ public:
   std::size_t position() const { return closer_.position(); }
   /// error level of the mesh now: running maximum of the pair distances applied (0 at the input).
   double current_distance() const { return closer_.current_distance(); }
+  /// error level after the first `k` contractions (0 for `k == 0`), `k <= size()`.
+  double distance_at(std::size_t k) const
+  {
+    return k == 0 ? 0.0 : file_.contractions[std::min(k, file_.contractions.size()) - 1].distance;
+  }
+  /// number of recorded contractions whose error level is at most `d`: the
+  /// position `forward_to_distance(d)` reaches once they are recorded.
+  std::size_t count_within(double d) const
+  {
+    std::size_t lo = 0, hi = file_.contractions.size();
+    while (lo < hi) {
+      std::size_t mid = (lo + hi) / 2;
+      if (file_.contractions[mid].distance <= d) lo = mid + 1; else hi = mid;
+    }
+    return lo;
+  }
 
   /// applies up to `k` contractions (replaying recorded ones first); returns how many.
-  std::size_t forward(std::size_t k) { return closer_.forward(k); }
+  std::size_t forward(std::size_t k)
+  {
+    std::size_t n = 0;
+    while (n < k && step(max_distance())) ++n;
+    return n;
+  }
   /// applies contractions while the next pair is not farther than `d` (at most `max_distance()`).
-  std::size_t forward_to_distance(double d) { return closer_.forward_to_distance(d); }
+  std::size_t forward_to_distance(double d)
+  {
+    std::size_t n = 0;
+    d = std::min(d, max_distance());
+    while (step(d)) ++n;
+    return n;
+  }
   /// undoes up to `k` contractions; returns how many.
   std::size_t backward(std::size_t k) { return closer_.backward(k); }
   /// undoes contractions until `current_distance() <= d`.
   std::size_t backward_to_distance(double d) { return closer_.backward_to_distance(d); }
+  /// moves to position `k` (at most `size()` unless new contractions are found), forward or backward.
+  std::size_t go_to(std::size_t k)
+  {
+    return k < position() ? backward(position() - k) : forward(k - position());
+  }
   /// one forward step limited to pairs not farther than `limit`; false when none is left.
-  bool step(double limit) { return closer_.step(limit); }
+  bool step(double limit)
+  {
+    const bool fresh = closer_.position() == closer_.size();
+    if (!closer_.step(limit)) return false;
+    if (fresh) {
+      const Point& p = *last_;
+      file_.contractions.push_back(Gap_contraction_record{
+          closer_.current_distance(),
+          {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}}});
+    }
+    return true;
+  }
 
   /// statistics of the mesh now (scans the mesh: O(size)).
   Gap_closing_result result() const { return closer_.result(); }
 
+  /// the recorded contractions, the parameters and the fingerprints (see `Gap_sequence_file`).
+  const Gap_sequence_file& record() const { return file_; }
+
+  /// writes every recorded contraction (whatever the position) with the
+  /// parameters and the fingerprints. Returns `Status::ok`,
+  /// `Status::invalid_parameter` when the sequence was built without
+  /// `gap_fingerprint_input(true)` or refused its input, or `Status::io_error`.
+  Status save(std::ostream& out) const
+  {
+    if (status() != Status::ok || !fingerprinted_) return Status::invalid_parameter;
+    return file_.write(out) ? Status::ok : Status::io_error;
+  }
+
+  /// applies the contractions of `file` (read by `Gap_sequence_file::read()`)
+  /// to the input, checking each one against the record. The sequence must be at
+  /// its start with nothing recorded, built on the same input (same vertex
+  /// positions and faces), with `gap_fingerprint_input(true)`, the same region,
+  /// and the tolerance, `gap_lambda` and `gap_snap_distance` of the file
+  /// (absolute tolerance). The contractions are found again by the algorithm and
+  /// must match the file: same order, distances and positions.
+  /// \return `Status::ok` (then `position() == file.contractions.size()`), else
+  ///   `Status::invalid_parameter` with `error`, the mesh back at its input.
+  Status replay(const Gap_sequence_file& file, std::string& error)
+  {
+    auto refuse = [&](const std::string& why) {
+      backward(position());
+      error = why;
+      return Status::invalid_parameter;
+    };
+    if (status() != Status::ok) return refuse("the sequence refused its input");
+    if (size() != 0) return refuse("the sequence has contractions already");
+    if (!fingerprinted_) return refuse("the sequence was built without gap_fingerprint_input(true)");
+    if (file.input_vertices != file_.input_vertices || file.input_faces != file_.input_faces ||
+        file.input_fingerprint != file_.input_fingerprint)
+      return refuse("the sequence was recorded on another mesh (" + std::to_string(file.input_vertices) +
+                    " vertices, " + std::to_string(file.input_faces) + " faces; this one has " +
+                    std::to_string(file_.input_vertices) + " and " + std::to_string(file_.input_faces) +
+                    (file.input_vertices == file_.input_vertices && file.input_faces == file_.input_faces
+                         ? ", but other positions or faces)"
+                         : ")"));
+    if (file.region_fingerprint != file_.region_fingerprint)
+      return refuse("the sequence was recorded with another region selection");
+    if (file.tolerance != file_.tolerance || file.lambda != file_.lambda || file.snap != file_.snap)
+      return refuse("the sequence was recorded with another tolerance, lambda or snap distance");
+    for (std::size_t i = 0; i < file.contractions.size(); ++i) {
+      if (!step(max_distance()))
+        return refuse("contraction " + std::to_string(i + 1) + " of " +
+                      std::to_string(file.contractions.size()) + " cannot be applied to this mesh");
+      const Gap_contraction_record& want = file.contractions[i];
+      const Gap_contraction_record& got = file_.contractions[i];
+      if (want.distance != got.distance || want.position != got.position)
+        return refuse("contraction " + std::to_string(i + 1) + " differs from the file (distance " +
+                      std::to_string(want.distance) + " recorded, " + std::to_string(got.distance) +
+                      " found): another mesh or another version of the algorithm");
+    }
+    return Status::ok;
+  }
+
 private:
-  internal::Gap_closer<TriangleMesh, VertexPointMap> closer_;
+  // order-independent hash of the vertex positions and of the faces (each as its
+  // three positions in cyclic order, starting at the smallest hash).
+  void fingerprint_input()
+  {
+    auto ph = [&](vertex_descriptor v) {
+      const Point& p = get(vpm_, v);
+      return internal::gap_hash_point(CGAL::to_double(p.x()), CGAL::to_double(p.y()),
+                                      CGAL::to_double(p.z()));
+    };
+    std::uint64_t h = 0;
+    std::size_t nv = 0, nf = 0;
+    for (vertex_descriptor v : vertices(tm_)) {
+      h += internal::gap_mix(ph(v));
+      ++nv;
+    }
+    std::vector<std::uint64_t> c;
+    for (face_descriptor f : faces(tm_)) {
+      c.clear();
+      for (halfedge_descriptor g : CGAL::halfedges_around_face(halfedge(f, tm_), tm_)) c.push_back(ph(target(g, tm_)));
+      std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+      std::uint64_t fh = 0x51ed27;
+      for (std::uint64_t x : c) fh = internal::gap_mix(fh ^ x);
+      h += fh;
+      ++nf;
+    }
+    file_.input_vertices = nv;
+    file_.input_faces = nf;
+    file_.input_fingerprint = h;
+    fingerprinted_ = true;
+  }
+
+  TriangleMesh& tm_;
+  VertexPointMap vpm_;
+  std::unique_ptr<Point> last_;  // the last position the worker wrote
+  internal::Gap_closer<TriangleMesh, Recording_map> closer_;
+  Gap_sequence_file file_;
+  bool fingerprinted_ = false;
 };
 
 } // namespace mrepair
