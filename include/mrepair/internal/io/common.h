@@ -26,6 +26,8 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #if defined(__unix__) || defined(__APPLE__)
@@ -158,6 +160,18 @@ struct Big_allocator
     }
 #endif
     ::operator delete(p);
+  }
+  /// `resize` leaves new elements default-initialized (not zeroed): every
+  /// reader writes what it resizes for, and zeroing costs a pass over memory
+  template <typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
   template <typename U>
   bool operator==(const Big_allocator<U>&) const { return true; }

@@ -58,6 +58,9 @@ struct Text_chunk
 /// the end of the line starting at `p`: its '\n' or `end`.
 inline const char* line_end(const char* p, const char* end)
 {
+  // mesh lines are short: a plain loop first, memchr for long lines
+  for (const char* stop = end - p > 96 ? p + 96 : end; p < stop; ++p)
+    if (*p == '\n') return p;
   const void* nl = p < end ? std::memchr(p, '\n', static_cast<std::size_t>(end - p)) : nullptr;
   return nl ? static_cast<const char*>(nl) : end;
 }
