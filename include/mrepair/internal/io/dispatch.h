@@ -196,8 +196,11 @@ void write_view(const std::string& path, const View& raw, bool binary, Io_result
   // refuse what the file could not represent faithfully
   const std::int64_t np = static_cast<std::int64_t>(raw.num_points());
   std::size_t first_bad = 0;
+  Soup_stats stats;
   for (std::size_t f = raw.num_polygons(); f-- > 0;) {
     const std::size_t n = raw.degree(f);
+    stats.max_degree = std::max(stats.max_degree, n);
+    if (n >= 3) stats.triangles += n - 2;
     bool bad = stl && n < 3;
     for (std::size_t k = 0; k < n && !bad; ++k) bad = !index_in_range(raw.index(f, k), np);
     if (bad) {
@@ -218,7 +221,7 @@ void write_view(const std::string& path, const View& raw, bool binary, Io_result
                 ", first is polygon " + std::to_string(first_bad);
     return;
   }
-  if (stl && fan_triangle_count(raw) > (std::numeric_limits<std::uint32_t>::max)() && binary) {
+  if (stl && stats.triangles > (std::numeric_limits<std::uint32_t>::max)() && binary) {
     r.status = Status::unsupported_format;
     r.message = path + ": not written: too many triangles for binary STL";
     return;
@@ -236,10 +239,10 @@ void write_view(const std::string& path, const View& raw, bool binary, Io_result
     switch (format) {
       case File_format::off: write_off(out, raw); break;
       case File_format::obj: write_obj(out, raw); break;
-      case File_format::ply: write_ply(out, raw, r.binary); break;
+      case File_format::ply: write_ply(out, raw, stats, r.binary); break;
       default:
-        write_stl(out, raw, r.binary);
-        r.polygons = fan_triangle_count(raw);
+        write_stl(out, raw, stats, r.binary);
+        r.polygons = stats.triangles;
         break;
     }
   } catch (const std::bad_alloc&) {

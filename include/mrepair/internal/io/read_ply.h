@@ -9,6 +9,11 @@
 // is skipped by its type, so files with normals, colors, flags, edges or
 // materials read fine. Faces with fewer than 3 vertices (list count 0, 1 or 2)
 // are left out of the soup and counted in `Ply_skipped_faces`.
+// Binary elements of fixed-size records are checked against the data once and
+// decoded in parallel blocks (float or double x, y, z without a per-value
+// type switch); face elements are walked once to check every list and note
+// where each block of faces starts, then decoded in parallel. ASCII bodies
+// are parsed in parallel chunks of lines when each element is on one line.
 
 #include <mrepair/internal/io/common.h>
 #include <mrepair/internal/io/text_chunks.h>

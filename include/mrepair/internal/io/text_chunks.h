@@ -38,9 +38,10 @@ namespace io {
 
 /// the size of the pieces that text parsing and formatting work on in
 /// parallel (bytes of text); tests make it small to exercise many chunks.
+/// Small enough that the per-chunk buffers of a wave stay few fresh pages.
 inline std::size_t& io_chunk_bytes()
 {
-  static std::size_t bytes = std::size_t(1) << 20;
+  static std::size_t bytes = std::size_t(256) << 10;
   return bytes;
 }
 
@@ -178,7 +179,7 @@ inline std::size_t io_threads()
 template <typename Parse>
 bool parse_chunks(std::size_t num_chunks, Raw_soup& out, const Parse& parse)
 {
-  const std::size_t wave = 4 * io_threads();
+  const std::size_t wave = 4 * io_threads();  // parts reused from wave to wave
   std::vector<Raw_soup> parts(std::min(wave, num_chunks));
   std::vector<char> ok(parts.size());
   for (std::size_t w0 = 0; w0 < num_chunks; w0 += wave) {

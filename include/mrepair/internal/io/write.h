@@ -37,6 +37,14 @@ struct Raw_soup_view
   static constexpr bool parallel = true;  ///< may be read from several threads
 };
 
+/// what the writers need to know of the whole soup before writing: found by
+/// the one validating pass of `write_view` (dispatch.h).
+struct Soup_stats
+{
+  std::size_t max_degree = 0;  ///< corners of the largest polygon
+  std::size_t triangles = 0;   ///< triangles of the fan triangulation
+};
+
 /// a piece of output text or bytes, formatted in place with std::to_chars.
 class Piece
 {
@@ -78,7 +86,7 @@ void write_pieces(Out_file& out, std::size_t n, std::size_t per_piece, const For
 {
   per_piece = std::max<std::size_t>(per_piece, 1);
   const std::size_t pieces = (n + per_piece - 1) / per_piece;
-  const std::size_t wave = 4 * io_threads();
+  const std::size_t wave = 2 * io_threads();
   std::vector<Piece> buf(std::min(wave, pieces));
   for (std::size_t w0 = 0; w0 < pieces; w0 += wave) {
     const std::size_t m = std::min(wave, pieces - w0);
@@ -168,12 +176,10 @@ void write_obj(Out_file& out, const View& s)
 }
 
 template <class View>
-void write_ply(Out_file& out, const View& s, bool binary)
+void write_ply(Out_file& out, const View& s, const Soup_stats& stats, bool binary)
 {
-  std::size_t max_size = 0;
-  for (std::size_t f = 0; f < s.num_polygons(); ++f) max_size = std::max(max_size, s.degree(f));
   // uchar counts are what most readers expect; wider only when needed
-  const bool wide_count = max_size > 255;
+  const bool wide_count = stats.max_degree > 255;
   const bool wide_index = s.num_points() > static_cast<std::size_t>((std::numeric_limits<std::int32_t>::max)());
   out.put("ply\nformat ").put(binary ? "binary_little_endian" : "ascii").put(" 1.0\n");
   out.put("comment written by mrepair\n");
@@ -231,20 +237,8 @@ inline void triangle_normal(const double* a, const double* b, const double* c, d
   }
 }
 
-/// number of triangles of the fan triangulation of `s`.
 template <class View>
-std::size_t fan_triangle_count(const View& s)
-{
-  std::size_t t = 0;
-  for (std::size_t f = 0; f < s.num_polygons(); ++f) {
-    std::size_t n = s.degree(f);
-    if (n >= 3) t += n - 2;
-  }
-  return t;
-}
-
-template <class View>
-void write_stl(Out_file& out, const View& s, bool binary)
+void write_stl(Out_file& out, const View& s, const Soup_stats& stats, bool binary)
 {
   if (binary) {
     char header[80] = {};
@@ -252,7 +246,7 @@ void write_stl(Out_file& out, const View& s, bool binary)
     std::memcpy(header, text, std::strlen(text));
     out.put_bytes(header, 80);
     char cnt[4];
-    store_le<std::uint32_t>(cnt, static_cast<std::uint32_t>(fan_triangle_count(s)));
+    store_le<std::uint32_t>(cnt, static_cast<std::uint32_t>(stats.triangles));
     out.put_bytes(cnt, 4);
   } else {
     out.put("solid mrepair\n");
