@@ -11,10 +11,12 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 #include <set>
 #include <string>
@@ -1366,6 +1368,411 @@ TEST(Io_real, armadillo_matches_cgal_counts)
   ASSERT_EQ(mrepair::read_polygon_mesh(path, m).status, Status::ok);
   EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
   EXPECT_TRUE(CGAL::is_closed(m));
+}
+
+
+// ---- issue 17: bulk binary reads, chunked text parsing, parallel writing ------
+
+/// sets the size of the parallel text chunks for one scope.
+struct Chunk_bytes
+{
+  std::size_t saved = mrepair::internal::io::io_chunk_bytes();
+  explicit Chunk_bytes(std::size_t b) { mrepair::internal::io::io_chunk_bytes() = b; }
+  ~Chunk_bytes() { mrepair::internal::io::io_chunk_bytes() = saved; }
+};
+
+/// chunk sizes that cut records everywhere: a byte, a few bytes, lines, the default.
+const std::size_t chunk_sizes[] = {1, 7, 64, 1000, std::size_t(1) << 20};
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void expect_same_points(const std::vector<Point>& a, const std::vector<Point>& b)
+{
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (int d = 0; d < 3; ++d)
+      ASSERT_TRUE(same_bits(a[i][d], b[i][d])) << "point " << i << " coordinate " << d << ": "
+                                               << a[i][d] << " vs " << b[i][d];
+}
+
+/// a soup with awkward doubles (tiny, huge, signed zero, subnormal, many
+/// digits), triangles, quads and pentagons; `floats` keeps it float-exact.
+Soup awkward_soup(std::size_t n, bool floats, unsigned seed = 17)
+{
+  std::mt19937_64 rng(seed);
+  const double special[] = {1e-300, -0.0, 1.5e10, 0.1, -123456.789012345678, 4.9e-324,
+                            1.7976931348623157e308, 2.2250738585072014e-308, 1.0 / 3.0, 7.0};
+  Soup s;
+  for (std::size_t i = 0; i < n; ++i) {
+    double c[3];
+    for (double& v : c) {
+      const std::uint64_t r = rng();
+      if (r % 4 == 0) {
+        v = special[(r >> 8) % 10];
+      } else {
+        std::uint64_t bits = rng();
+        std::memcpy(&v, &bits, sizeof v);
+        if (!std::isfinite(v)) v = std::ldexp(static_cast<double>(r >> 11), -40);
+      }
+      if (floats) {
+        v = to_float(v);
+        if (!std::isfinite(v) || v == 0) v = to_float(static_cast<double>(r % 1000) / 7.0 + 1);
+      }
+    }
+    s.points.emplace_back(c[0], c[1], c[2]);
+  }
+  for (std::size_t f = 0; f + 5 < n; f += 2) {
+    const std::size_t k = 3 + (f / 2) % 3;  // 3, 4 or 5 corners
+    Polygon poly;
+    for (std::size_t j = 0; j < k; ++j) poly.push_back((f + j * 7919) % n);
+    s.polygons.push_back(poly);
+  }
+  return s;
+}
+
+TEST(Io_issue_17, round_trips_are_bit_identical_in_every_format_and_chunk_size)
+{
+  const Soup s = awkward_soup(3000, false);
+  const Soup sf = awkward_soup(3000, true);
+  for (std::size_t bytes : chunk_sizes) {
+    Chunk_bytes chunk(bytes);
+    for (const Format& f : all_formats) {
+      SCOPED_TRACE(std::string(f.ext) + (f.binary ? " binary" : " ascii") + ", chunks of " +
+                   std::to_string(bytes));
+      const bool stl = std::string(f.ext) == "stl";
+      const Soup& in = stl ? sf : s;
+      const std::string path = temp_file(std::string("awkward.") + f.ext);
+      Io_result w = mrepair::write_polygon_soup(path, in.points, in.polygons, f.binary);
+      ASSERT_EQ(w.status, Status::ok) << w.message;
+      Read x = read(path);
+      ASSERT_EQ(x.r.status, Status::ok) << x.r.message;
+      EXPECT_EQ(x.r.binary, f.binary);
+      if (!stl) {
+        expect_same_points(x.points, in.points);
+        EXPECT_EQ(x.polygons, in.polygons);
+        continue;
+      }
+      // STL: fan triangles, corners by value: every triangle's corners match
+      std::size_t t = 0;
+      for (const Polygon& poly : in.polygons)
+        for (std::size_t k = 1; k + 1 < poly.size(); ++k, ++t) {
+          ASSERT_LT(t, x.polygons.size());
+          const std::size_t want[3] = {poly[0], poly[k], poly[k + 1]};
+          for (int c = 0; c < 3; ++c)
+            ASSERT_EQ(x.points[x.polygons[t][c]], in.points[want[c]]) << "triangle " << t;
+        }
+      EXPECT_EQ(t, x.polygons.size());
+      // the merge numbers points in order of first appearance, exactly once each
+      std::set<std::array<double, 3>> distinct;
+      for (const Point& p : x.points) distinct.insert({p.x(), p.y(), p.z()});
+      EXPECT_EQ(distinct.size(), x.points.size());
+    }
+  }
+}
+
+TEST(Io_issue_17, writing_twice_gives_the_same_bytes_whatever_the_chunk_size)
+{
+  const Soup s = awkward_soup(2000, false);
+  for (const Format& f : all_formats) {
+    SCOPED_TRACE(std::string(f.ext) + (f.binary ? " binary" : " ascii"));
+    std::string reference;
+    for (std::size_t bytes : chunk_sizes) {
+      Chunk_bytes chunk(bytes);
+      const std::string path = temp_file(std::string("bytes.") + f.ext);
+      ASSERT_EQ(mrepair::write_polygon_soup(path, s.points, s.polygons, f.binary).status, Status::ok);
+      const std::string b = read_bytes(path);
+      if (reference.empty())
+        reference = b;
+      else
+        EXPECT_TRUE(b == reference) << "chunks of " << bytes;
+    }
+  }
+}
+
+/// the points and polygons of the decorated text files below.
+const std::vector<std::array<double, 3>> decorated_points = {
+    {1e-300, -0.0, 1.5e10}, {1, 0, 0}, {0.25, 1, -0.0}, {-1.5e-7, 2.5, 3}, {4, 5, 6}};
+const std::vector<Polygon> decorated_polygons = {{0, 1, 2}, {1, 3, 2, 4}, {4, 3, 0}};
+
+/// text of the decorated points; each coordinate written in a different style
+std::string decorated_coordinate(std::size_t i, int d)
+{
+  static const char* text[5][3] = {{"1e-300", "-0", "1.5E+10"},
+                                   {"1.0", "0", "+0.0"},
+                                   {".25", "1e0", "-0.0e5"},
+                                   {"-1.5e-7", "2.50", "3"},
+                                   {"4", "5.", "6.000"}};
+  return text[i][d];
+}
+
+void expect_decorated(const Read& x, const std::string& what)
+{
+  SCOPED_TRACE(what);
+  ASSERT_EQ(x.r.status, Status::ok) << x.r.message;
+  ASSERT_EQ(x.points.size(), decorated_points.size());
+  for (std::size_t i = 0; i < decorated_points.size(); ++i)
+    for (int d = 0; d < 3; ++d)
+      EXPECT_TRUE(same_bits(x.points[i][d], decorated_points[i][d])) << i << "," << d;
+  EXPECT_EQ(x.polygons, decorated_polygons);
+}
+
+/// `copies` of the decorated soup in one body, with CRLF line ends,
+/// comments (where the format has them), blank lines, tabs and trailing blanks.
+std::string decorated_lines(const std::string& format, int copies, bool crlf)
+{
+  const std::string nl = crlf ? "\r\n" : "\n";
+  const bool comments = format != "ply";
+  std::string v, f;
+  for (int c = 0; c < copies; ++c)
+    for (std::size_t i = 0; i < decorated_points.size(); ++i) {
+      if (format == "obj") v += i % 2 ? "v\t" : "v ";
+      v += (i % 2 ? "\t" : "") + decorated_coordinate(i, 0) + (i % 3 ? " \t" : " ") +
+           decorated_coordinate(i, 1) + " " + decorated_coordinate(i, 2);
+      v += (i == 2 && comments ? "  # a comment" : "   ") + nl;
+      if (i == 1) v += nl + (comments ? "# between vertices" + nl : std::string()) + " \t" + nl;
+    }
+  const std::size_t np = decorated_points.size();
+  for (int c = 0; c < copies; ++c)
+    for (std::size_t k = 0; k < decorated_polygons.size(); ++k) {
+      const Polygon& poly = decorated_polygons[k];
+      f += format == "obj" ? "f" : std::to_string(poly.size());
+      for (std::size_t j = 0; j < poly.size(); ++j) {
+        const std::size_t i = poly[j] + c * np;
+        if (format != "obj") {
+          f += (j % 2 ? "\t" : " ") + std::to_string(i);
+        } else if (k == 1) {  // relative: -1 is the last vertex read so far
+          f += " " + std::to_string(static_cast<long>(i) - static_cast<long>(copies * np));
+        } else {
+          f += " " + std::to_string(i + 1) + (j == 1 ? "//1" : "");
+        }
+      }
+      f += (k == 2 ? " \t " : "") + nl;
+      if (k == 0) f += nl;
+    }
+  return v + f;
+}
+
+Soup decorated_copies(int copies)
+{
+  Soup s;
+  for (int c = 0; c < copies; ++c) {
+    for (const auto& p : decorated_points) s.points.emplace_back(p[0], p[1], p[2]);
+  }
+  for (int c = 0; c < copies; ++c)
+    for (Polygon poly : decorated_polygons) {
+      for (std::size_t& i : poly) i += c * decorated_points.size();
+      s.polygons.push_back(poly);
+    }
+  return s;
+}
+
+TEST(Io_issue_17, chunk_boundaries_in_crlf_comments_blank_lines_tabs_and_odd_numbers)
+{
+  const int copies = 40;
+  const Soup want = decorated_copies(copies);
+  const std::size_t np = want.points.size(), nf = want.polygons.size();
+  for (bool crlf : {false, true}) {
+    const std::string nl = crlf ? "\r\n" : "\n";
+    const std::string off = "OFF" + nl + "# counts next" + nl + std::to_string(np) + " " +
+                            std::to_string(nf) + " 0" + nl + decorated_lines("off", copies, crlf);
+    const std::string obj = "# obj" + nl + decorated_lines("obj", copies, crlf);
+    const std::string ply = "ply" + nl + "format ascii 1.0" + nl + "element vertex " +
+                            std::to_string(np) + nl + "property double x" + nl +
+                            "property double y" + nl + "property double z" + nl +
+                            "element face " + std::to_string(nf) + nl +
+                            "property list uchar int vertex_indices" + nl + "end_header" + nl +
+                            decorated_lines("ply", copies, crlf);
+    for (std::size_t bytes : chunk_sizes) {
+      Chunk_bytes chunk(bytes);
+      const std::string what = std::string(crlf ? "CRLF" : "LF") + ", chunks of " + std::to_string(bytes);
+      for (const auto& file : {std::make_pair("deco.off", off), std::make_pair("deco.obj", obj),
+                               std::make_pair("deco.ply", ply)}) {
+        Read x = read(write_file(file.first, file.second));
+        ASSERT_EQ(x.r.status, Status::ok) << what << " " << file.first << ": " << x.r.message;
+        expect_same_points(x.points, want.points);
+        EXPECT_EQ(x.polygons, want.polygons) << what << " " << file.first;
+      }
+    }
+  }
+  // one copy, checked against the values themselves
+  Chunk_bytes chunk(5);
+  expect_decorated(read(write_file("deco1.off", "OFF\n5 3 0\n" + decorated_lines("off", 1, true))),
+                   "off");
+  expect_decorated(read(write_file("deco1.obj", decorated_lines("obj", 1, false))), "obj");
+}
+
+TEST(Io_issue_17, records_over_several_lines_and_trailing_text_read_as_before)
+{
+  for (std::size_t bytes : chunk_sizes) {
+    Chunk_bytes chunk(bytes);
+    SCOPED_TRACE(bytes);
+    // OFF: a vertex over two lines, a comment inside; text after the last face
+    Read x = read(write_file("split.off", "OFF\n3 1\n0 0\n0\n1 0 0 # c\n0 1\n# c\n 0\n3 0 1 2\n"
+                                          "trailing words are ignored\n"));
+    ASSERT_EQ(x.r.status, Status::ok) << x.r.message;
+    EXPECT_EQ(x.points.size(), 3u);
+    EXPECT_EQ(x.polygons, (std::vector<Polygon>{{0, 1, 2}}));
+    // PLY ascii: one vertex's properties over two lines
+    x = read(write_file("split.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                     "property float y\nproperty float z\nelement face 1\n"
+                                     "property list uchar int vertex_indices\nend_header\n"
+                                     "0 0\n0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+    ASSERT_EQ(x.r.status, Status::ok) << x.r.message;
+    EXPECT_EQ(x.points.size(), 3u);
+    EXPECT_EQ(x.polygons, (std::vector<Polygon>{{0, 1, 2}}));
+    // OBJ with a continuation (read line by line) and relative indices
+    x = read(write_file("cont.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 \\\n -2 -1\n"));
+    ASSERT_EQ(x.r.status, Status::ok) << x.r.message;
+    EXPECT_EQ(x.polygons, (std::vector<Polygon>{{0, 1, 2}}));
+  }
+}
+
+TEST(Io_issue_17, errors_name_the_same_line_whatever_the_chunk_size)
+{
+  // many good lines, then one bad: the line number must survive the chunking
+  std::string good_v, good_f;
+  for (int i = 0; i < 300; ++i) good_v += std::to_string(i) + " 0 0\n";
+  for (int i = 0; i + 2 < 300; ++i)
+    good_f += "3 " + std::to_string(i) + " " + std::to_string(i + 1) + " " + std::to_string(i + 2) + "\n";
+  const std::string off_bad = "OFF\n300 299 0\n" + good_v + good_f + "3 1 2 x\n";
+  const std::string off_short = "OFF\n300 400 0\n" + good_v + good_f;
+  std::string obj_bad;
+  for (int i = 0; i < 300; ++i) obj_bad += "v " + std::to_string(i) + " 0 0\n";
+  for (int i = 0; i < 100; ++i) obj_bad += "f -1 -2 -3\n";
+  obj_bad += "f 1 2 zz\n";
+  for (int i = 0; i < 100; ++i) obj_bad += "v 0 0 q\n";  // later errors: not reported
+  std::string ply_bad = "ply\nformat ascii 1.0\nelement vertex 300\nproperty float x\n"
+                        "property float y\nproperty float z\nelement face 299\n"
+                        "property list uchar int vertex_indices\nend_header\n" +
+                        good_v + good_f + "3 1 2 x\n";
+  std::map<std::string, std::string> reference;
+  for (std::size_t bytes : chunk_sizes) {
+    Chunk_bytes chunk(bytes);
+    SCOPED_TRACE(bytes);
+    for (const auto& file : {std::make_pair("bad.off", off_bad), std::make_pair("short.off", off_short),
+                             std::make_pair("bad2.obj", obj_bad), std::make_pair("bad.ply", ply_bad)}) {
+      Read x = read(write_file(file.first, file.second));
+      expect_cleared(x, Status::parse_error);
+      if (reference.count(file.first))
+        EXPECT_EQ(x.r.message, reference[file.first]);
+      else
+        reference[file.first] = x.r.message;
+    }
+  }
+  EXPECT_NE(reference["bad.off"].find(":601:"), std::string::npos) << reference["bad.off"];
+  EXPECT_NE(reference["bad2.obj"].find(":401:"), std::string::npos) << reference["bad2.obj"];
+  EXPECT_NE(reference["short.off"].find("298 of 400 faces"), std::string::npos) << reference["short.off"];
+  EXPECT_NE(reference["bad.ply"].find(":608:"), std::string::npos) << reference["bad.ply"];
+}
+
+TEST(Io_issue_17, invalid_data_found_in_any_chunk_is_kept_counted_and_located)
+{
+  std::string off = "OFF\n200 100 0\n";
+  for (int i = 0; i < 200; ++i) off += (i == 150 ? std::string("nan 0 0") : std::to_string(i) + " 1 2") + "\n";
+  for (int i = 0; i < 100; ++i) off += "3 " + std::to_string(i) + " " + std::to_string(i + 1) + " " +
+                                       std::to_string(i == 70 ? 999 : i + 2) + "\n";
+  std::string obj;
+  for (int i = 0; i < 200; ++i) obj += "v " + std::to_string(i) + " 1 2\n";
+  for (int i = 0; i < 100; ++i) obj += i == 80 ? "f 1 2 -300\n" : "f -1 -2 -3\n";
+  for (std::size_t bytes : chunk_sizes) {
+    Chunk_bytes chunk(bytes);
+    SCOPED_TRACE(bytes);
+    Read x = read(write_file("inv.off", off));
+    EXPECT_EQ(x.r.status, Status::invalid_index);
+    EXPECT_EQ(x.r.invalid_polygons, 1u);
+    EXPECT_EQ(x.r.non_finite_points, 1u);
+    EXPECT_NE(x.r.message.find(":273:"), std::string::npos) << x.r.message;
+    EXPECT_EQ(x.points.size(), 200u);
+    x = read(write_file("inv.obj", obj));
+    EXPECT_EQ(x.r.status, Status::invalid_index);
+    EXPECT_EQ(x.r.invalid_polygons, 1u);
+    EXPECT_NE(x.r.message.find(":281:"), std::string::npos) << x.r.message;
+    ASSERT_EQ(x.polygons.size(), 100u);
+    EXPECT_EQ(x.polygons[99], (Polygon{199, 198, 197}));
+    x = read(write_file("nan.off", "OFF\n3 1\n0 0 0\n1 inf 0\n0 1 0\n3 0 1 2\n"));
+    EXPECT_EQ(x.r.status, Status::non_finite_input);
+    EXPECT_NE(x.r.message.find(":4:"), std::string::npos) << x.r.message;
+  }
+}
+
+/// a binary PLY of `s`, with a uchar flag before the list and a list of
+/// texture coordinates after it in each face, counts of `count_type`
+/// and indices of `index_type`; faces with fewer than 3 corners allowed.
+std::string binary_ply(const Soup& s, bool big_endian, const std::string& count_type,
+                       const std::string& index_type)
+{
+  std::string h = std::string("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
+                  " 1.0\nelement vertex " + std::to_string(s.points.size()) +
+                  "\nproperty float x\nproperty double y\nproperty float z\nproperty uchar red\n"
+                  "element face " + std::to_string(s.polygons.size()) +
+                  "\nproperty uchar flags\nproperty list " + count_type + " " + index_type +
+                  " vertex_indices\nproperty list uchar float texcoord\nend_header\n";
+  for (const Point& p : s.points) {
+    append_raw(h, static_cast<float>(p.x()), big_endian);
+    append_raw(h, p.y(), big_endian);
+    append_raw(h, static_cast<float>(p.z()), big_endian);
+    append_raw(h, std::uint8_t(7), big_endian);
+  }
+  for (const Polygon& poly : s.polygons) {
+    append_raw(h, std::uint8_t(1), big_endian);
+    if (count_type == "uchar") append_raw(h, static_cast<std::uint8_t>(poly.size()), big_endian);
+    if (count_type == "ushort") append_raw(h, static_cast<std::uint16_t>(poly.size()), big_endian);
+    if (count_type == "int") append_raw(h, static_cast<std::int32_t>(poly.size()), big_endian);
+    for (std::size_t i : poly) {
+      if (index_type == "int") append_raw(h, static_cast<std::int32_t>(i), big_endian);
+      if (index_type == "uint") append_raw(h, static_cast<std::uint32_t>(i), big_endian);
+      if (index_type == "ushort") append_raw(h, static_cast<std::uint16_t>(i), big_endian);
+    }
+    append_raw(h, std::uint8_t(2), big_endian);
+    append_raw(h, 0.5f, big_endian);
+    append_raw(h, 0.25f, big_endian);
+  }
+  return h;
+}
+
+TEST(Io_issue_17, binary_ply_general_layouts_over_many_blocks)
+{
+  Soup s = awkward_soup(40000, true);  // > 16384 faces per block: several blocks
+  for (Point& p : s.points) p = Point(p.x(), to_float(p.y() / 3), p.z());
+  Soup with_short = s;
+  with_short.polygons.insert(with_short.polygons.begin() + 17000, Polygon{1, 2});
+  with_short.polygons.insert(with_short.polygons.begin() + 5, Polygon{});
+  for (bool be : {false, true})
+    for (const char* count : {"uchar", "ushort", "int"})
+      for (const char* index : {"int", "uint"}) {
+        SCOPED_TRACE(std::string(be ? "big" : "little") + " " + count + " " + index);
+        Read x = read(write_file("general.ply", binary_ply(with_short, be, count, index)));
+        ASSERT_EQ(x.r.status, Status::ok) << x.r.message;
+        EXPECT_TRUE(x.r.binary);
+        EXPECT_EQ(x.r.polygons_skipped, 2u);
+        EXPECT_NE(x.r.message.find("first is face 5"), std::string::npos) << x.r.message;
+        expect_same_points(x.points, s.points);
+        EXPECT_EQ(x.polygons, s.polygons);
+      }
+  // truncated in the middle of a face list, in a later block
+  std::string b = binary_ply(s, false, "uchar", "int");
+  Read x = read(write_file("trunc.ply", b.substr(0, b.size() - 100)));
+  expect_cleared(x, Status::parse_error);
+  EXPECT_NE(x.r.message.find("ends in element face"), std::string::npos) << x.r.message;
+}
+
+TEST(Io_issue_17, large_files_cross_the_default_chunk_size)
+{
+  // a few MB of text: several default-sized chunks and waves
+  const Soup s = awkward_soup(120000, false, 5);
+  for (const Format& f : all_formats) {
+    if (std::string(f.ext) == "stl") continue;
+    SCOPED_TRACE(std::string(f.ext) + (f.binary ? " binary" : " ascii"));
+    const std::string path = temp_file(std::string("large.") + f.ext);
+    ASSERT_EQ(mrepair::write_polygon_soup(path, s.points, s.polygons, f.binary).status, Status::ok);
+    if (!f.binary) {
+      EXPECT_GT(fs::file_size(path), 3 * mrepair::internal::io::io_chunk_bytes());
+    }
+    Read x = read(path);
+    ASSERT_EQ(x.r.status, Status::ok) << x.r.message;
+    expect_same_points(x.points, s.points);
+    EXPECT_EQ(x.polygons, s.polygons);
+  }
 }
 
 } // namespace

@@ -9,6 +9,7 @@
 
 #include <mrepair/internal/io/build_mesh.h>
 #include <mrepair/internal/io/common.h>
+#include <mrepair/internal/utility.h>
 #include <mrepair/io_result.h>
 #include <mrepair/status.h>
 
@@ -18,11 +19,13 @@
 #include <CGAL/number_utils.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <limits>
 #include <new>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace mrepair {
@@ -57,16 +60,30 @@ void raw_to_soup(const std::string& path, Raw_soup& raw, std::vector<Point>& poi
   try {
     using Index = typename Polygon::value_type;
     points.reserve(raw.num_points());
+    advise_huge_pages(points.data(), raw.num_points() * sizeof(Point));
     for (std::size_t i = 0; i < raw.num_points(); ++i)
       points.emplace_back(raw.xyz[3 * i], raw.xyz[3 * i + 1], raw.xyz[3 * i + 2]);
-    raw.xyz = std::vector<double>();
+    raw.xyz = Big_vector<double>();
+    polygons.reserve(raw.num_polygons());
+    advise_huge_pages(polygons.data(), raw.num_polygons() * sizeof(Polygon));
     polygons.resize(raw.num_polygons());
-    for (std::size_t f = 0; f < raw.num_polygons(); ++f) {
-      Polygon& poly = polygons[f];
-      const std::size_t b = raw.starts[f], n = raw.starts[f + 1] - b;
-      poly.resize(n);
-      for (std::size_t k = 0; k < n; ++k) poly[k] = static_cast<Index>(raw.indices[b + k]);
-    }
+    // in parallel: allocating a million small polygons is the cost here, and
+    // each thread allocates from its own arena
+    std::atomic<bool> out_of_memory{false};
+    const std::size_t block = 8192;
+    parallel_for_index((raw.num_polygons() + block - 1) / block, 1, [&](std::size_t j) {
+      try {
+        for (std::size_t f = j * block; f < std::min(raw.num_polygons(), (j + 1) * block); ++f) {
+          Polygon& poly = polygons[f];
+          const std::size_t b = raw.starts[f], n = raw.starts[f + 1] - b;
+          poly.resize(n);
+          for (std::size_t k = 0; k < n; ++k) poly[k] = static_cast<Index>(raw.indices[b + k]);
+        }
+      } catch (const std::bad_alloc&) {
+        out_of_memory = true;
+      }
+    });
+    if (out_of_memory) throw std::bad_alloc();
   } catch (const std::bad_alloc&) {
     points.clear();
     polygons.clear();
@@ -76,32 +93,35 @@ void raw_to_soup(const std::string& path, Raw_soup& raw, std::vector<Point>& poi
   }
 }
 
-/// copies a soup into `raw`; false (and `r` says why) when memory ran out.
+/// the caller's point and polygon vectors as the writers read them (write.h):
+/// no intermediate copy. An index that is negative (signed types) or beyond
+/// `std::int64_t` (unsigned types) reads as -1, i.e. out of range.
 template <class Point, class Polygon>
-bool soup_to_raw(const std::string& path, const std::vector<Point>& points,
-                 const std::vector<Polygon>& polygons, Raw_soup& raw, Io_result& r)
+struct Vectors_view
 {
-  return fill_or_report_oom(path, r, [&] {
-    raw.xyz.reserve(3 * points.size());
-    for (const Point& p : points)
-      for (int d = 0; d < 3; ++d) raw.xyz.push_back(coordinate(p, d));
-    std::size_t corners = 0;
-    for (const Polygon& poly : polygons) corners += poly.size();
-    raw.indices.reserve(corners);
-    raw.starts.reserve(polygons.size() + 1);
-    for (const Polygon& poly : polygons) {
-      for (const auto& i : poly) {
-        // negative values of a signed index type and huge unsigned ones are out of range
-        std::int64_t v = static_cast<std::int64_t>(i);
-        if (std::is_unsigned<std::decay_t<decltype(i)>>::value &&
-            static_cast<std::uint64_t>(i) > static_cast<std::uint64_t>((std::numeric_limits<std::int64_t>::max)()))
-          v = -1;
-        raw.indices.push_back(v);
-      }
-      raw.starts.push_back(raw.indices.size());
-    }
-  });
-}
+  const std::vector<Point>& points;
+  const std::vector<Polygon>& polygons;
+  std::size_t num_points() const { return points.size(); }
+  std::size_t num_polygons() const { return polygons.size(); }
+  void point(std::size_t i, double* c) const
+  {
+    for (int d = 0; d < 3; ++d) c[d] = coordinate(points[i], d);
+  }
+  std::size_t degree(std::size_t f) const { return static_cast<std::size_t>(polygons[f].size()); }
+  std::int64_t index(std::size_t f, std::size_t k) const
+  {
+    const auto i = polygons[f][k];
+    if (std::is_unsigned<std::decay_t<decltype(i)>>::value &&
+        static_cast<std::uint64_t>(i) > static_cast<std::uint64_t>((std::numeric_limits<std::int64_t>::max)()))
+      return -1;
+    return static_cast<std::int64_t>(i);
+  }
+  const double* xyz() const { return nullptr; }
+  /// parallel formatting only for plain floating-point coordinates (an exact
+  /// kernel's lazy numbers may be refined by `to_double`, not thread-safe)
+  static constexpr bool parallel =
+      std::is_floating_point<std::decay_t<decltype(std::declval<const Point&>().x())>>::value;
+};
 
 /// copies `pmesh` into `raw`, vertices numbered consecutively in the order of
 /// `vertices(pmesh)`; false (and `r` says why) when memory ran out.

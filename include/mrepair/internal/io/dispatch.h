@@ -177,8 +177,10 @@ inline void read_raw(const std::string& path, Raw_soup& raw, Io_result& r)
   }
 }
 
-/// writes `raw` to `path` in the format of its extension.
-inline void write_raw(const std::string& path, const Raw_soup& raw, bool binary, Io_result& r)
+/// writes the soup of `raw` (a `Raw_soup_view` or a view of the same shape)
+/// to `path` in the format of its extension.
+template <class View>
+void write_view(const std::string& path, const View& raw, bool binary, Io_result& r)
 {
   r = Io_result();
   std::string why;
@@ -194,17 +196,23 @@ inline void write_raw(const std::string& path, const Raw_soup& raw, bool binary,
   // refuse what the file could not represent faithfully
   const std::int64_t np = static_cast<std::int64_t>(raw.num_points());
   std::size_t first_bad = 0;
+  Soup_stats stats;
   for (std::size_t f = raw.num_polygons(); f-- > 0;) {
-    std::size_t b = raw.starts[f], e = raw.starts[f + 1];
-    bool bad = stl && e - b < 3;
-    for (std::size_t k = b; k < e && !bad; ++k) bad = !index_in_range(raw.indices[k], np);
+    const std::size_t n = raw.degree(f);
+    stats.max_degree = std::max(stats.max_degree, n);
+    if (n >= 3) stats.triangles += n - 2;
+    bool bad = stl && n < 3;
+    for (std::size_t k = 0; k < n && !bad; ++k) bad = !index_in_range(raw.index(f, k), np);
     if (bad) {
       ++r.invalid_polygons;
       first_bad = f;
     }
   }
-  for (std::size_t i = 0; i < raw.num_points(); ++i)
-    if (!point_is_finite(raw, i)) ++r.non_finite_points;
+  for (std::size_t i = 0; i < raw.num_points(); ++i) {
+    double c[3];
+    raw.point(i, c);
+    if (!(std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]))) ++r.non_finite_points;
+  }
   if (r.invalid_polygons) {
     r.status = Status::invalid_index;
     r.message = path + ": not written: " + std::to_string(r.invalid_polygons) +
@@ -213,7 +221,7 @@ inline void write_raw(const std::string& path, const Raw_soup& raw, bool binary,
                 ", first is polygon " + std::to_string(first_bad);
     return;
   }
-  if (stl && fan_triangle_count(raw) > (std::numeric_limits<std::uint32_t>::max)() && binary) {
+  if (stl && stats.triangles > (std::numeric_limits<std::uint32_t>::max)() && binary) {
     r.status = Status::unsupported_format;
     r.message = path + ": not written: too many triangles for binary STL";
     return;
@@ -231,10 +239,10 @@ inline void write_raw(const std::string& path, const Raw_soup& raw, bool binary,
     switch (format) {
       case File_format::off: write_off(out, raw); break;
       case File_format::obj: write_obj(out, raw); break;
-      case File_format::ply: write_ply(out, raw, r.binary); break;
+      case File_format::ply: write_ply(out, raw, stats, r.binary); break;
       default:
-        write_stl(out, raw, r.binary);
-        r.polygons = fan_triangle_count(raw);
+        write_stl(out, raw, stats, r.binary);
+        r.polygons = stats.triangles;
         break;
     }
   } catch (const std::bad_alloc&) {
@@ -247,6 +255,12 @@ inline void write_raw(const std::string& path, const Raw_soup& raw, bool binary,
     r.status = Status::io_error;
     r.message = path + ": write error (disk full?)";
   }
+}
+
+/// writes `raw` to `path` in the format of its extension.
+inline void write_raw(const std::string& path, const Raw_soup& raw, bool binary, Io_result& r)
+{
+  write_view(path, Raw_soup_view{raw}, binary, r);
 }
 
 } // namespace io

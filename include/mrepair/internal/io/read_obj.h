@@ -9,9 +9,12 @@
 // vertex become negative (invalid) indices. A `\` as the last non-blank
 // character of a line (outside a comment) joins the next line to it, for any
 // record. Every other record (vt, vn, g, o, s, usemtl, mtllib, l, p, ...) is
-// ignored.
+// ignored. Files without continuations are parsed in parallel chunks of lines
+// (text_chunks.h): a chunk first counts its `v` records, so that relative
+// indices resolve as in one pass; the first error in file order is reported.
 
 #include <mrepair/internal/io/common.h>
+#include <mrepair/internal/io/text_chunks.h>
 
 namespace mrepair {
 namespace internal {
@@ -35,9 +38,18 @@ inline const char* obj_continuation(const char* b, const char* e)
   return mark;
 }
 
-/// parses one logical record [b, e) (no newline inside) that starts on `line`.
+/// true when the record [b, e) is a vertex (`v`) record.
+inline bool is_obj_vertex(const char* b, const char* e)
+{
+  while (b < e && is_blank(*b)) ++b;
+  return e - b >= 2 && b[0] == 'v' && is_space(b[1]);
+}
+
+/// parses one logical record [b, e) (no newline inside) that starts on `line`;
+/// `vertex_base` vertices precede those of `soup` (chunked parsing).
 inline bool read_obj_record(const char* b, const char* e, std::size_t line,
-                            const std::string& path, Raw_soup& soup, Error& err)
+                            const std::string& path, Raw_soup& soup, Error& err,
+                            std::int64_t vertex_base = 0)
 {
   Text_cursor c(b, e);
   c.line = line;
@@ -55,7 +67,7 @@ inline bool read_obj_record(const char* b, const char* e, std::size_t line,
     }
     soup.add_point(v[0], v[1], v[2], line);
   } else if (kw == "f" || kw == "fo") {
-    const std::int64_t nv = static_cast<std::int64_t>(soup.num_points());
+    const std::int64_t nv = vertex_base + static_cast<std::int64_t>(soup.num_points());
     while (!c.at_eol()) {
       std::int64_t i;
       if (!c.parse_int(i, '/')) return fail("face: expected a vertex index, got " + c.shown_token());
@@ -70,9 +82,46 @@ inline bool read_obj_record(const char* b, const char* e, std::size_t line,
   return true;
 }
 
+/// the chunked parse of a file without line continuations.
+inline bool read_obj_in_chunks(const File_buffer& buf, const std::string& path, Raw_soup& soup,
+                               Error& err)
+{
+  std::vector<Text_chunk> chunks = split_text(buf.begin(), buf.end(), 1, '#');
+  std::vector<std::int64_t> vertex_base(chunks.size() + 1, 0);
+  parallel_for_index(chunks.size(), 1, [&](std::size_t k) {
+    for (const char* s = chunks[k].b; s < chunks[k].e;) {
+      const char* t = line_end(s, chunks[k].e);
+      vertex_base[k + 1] += is_obj_vertex(s, t);
+      s = t + 1;
+    }
+  });
+  for (std::size_t k = 0; k < chunks.size(); ++k) vertex_base[k + 1] += vertex_base[k];
+  std::vector<Error> errors(chunks.size());
+  const std::size_t records = chunks.empty() ? 0 : chunks.back().first_record + chunks.back().records;
+  const std::size_t vertices = static_cast<std::size_t>(vertex_base.back());
+  soup.reserve(vertices, records - vertices, 3 * (records - vertices));
+  const bool ok = parse_chunks(chunks.size(), soup, [&](std::size_t k, Raw_soup& part) {
+    const std::size_t nv = static_cast<std::size_t>(vertex_base[k + 1] - vertex_base[k]);
+    const std::size_t nf = chunks[k].records > nv ? chunks[k].records - nv : 0;
+    part.reserve(nv, nf, 3 * nf);
+    return for_each_record(chunks[k], '#', [&](std::size_t, const char* b, const char* e,
+                                               std::size_t line) {
+      return read_obj_record(b, e, line, path, part, errors[k], vertex_base[k]);
+    });
+  });
+  if (ok) return true;
+  for (Error& e : errors)
+    if (!e.ok()) {
+      err = std::move(e);
+      break;
+    }
+  return false;
+}
+
 inline bool read_obj(const File_buffer& buf, const std::string& path, Raw_soup& soup, Error& err)
 {
   soup.has_lines = true;
+  if (!std::memchr(buf.begin(), '\\', buf.size)) return read_obj_in_chunks(buf, path, soup, err);
   std::string joined;  // a record continued over several lines
   const char* p = buf.begin();
   const char* const end = buf.end();

@@ -8,12 +8,73 @@
 // (x y z, or x y z w for 4OFF, or `dim` values for nOFF) the rest of the
 // line (normals, colors, texture coordinates) is skipped, and the rest of a
 // face line after its indices (face colors) too. Comments start with '#'.
+// The body is parsed in parallel chunks of lines when every record is on one
+// line (text_chunks.h); otherwise, or on any error, line by line.
 
 #include <mrepair/internal/io/common.h>
+#include <mrepair/internal/io/text_chunks.h>
 
 namespace mrepair {
 namespace internal {
 namespace io {
+
+/// parses the `nv` vertex and `nf` face records of an OFF body [b, e) that
+/// starts on line `line`, one record per line, in parallel chunks; false when
+/// a record is not on one line or anything is wrong (nothing is kept then).
+inline bool read_off_body_in_chunks(const char* b, const char* e, std::size_t line,
+                                    std::uint64_t nv, std::uint64_t nf, std::int64_t dim,
+                                    bool homogeneous, Raw_soup& soup)
+{
+  std::vector<Text_chunk> chunks = split_text(b, e, line, '#');
+  const std::uint64_t records = chunks.empty() ? 0 : chunks.back().first_record + chunks.back().records;
+  if (records < nv + nf || nv + nf < nv) return false;
+  soup.reserve(nv, nf, 3 * nf);
+  return parse_chunks(chunks.size(), soup, [&](std::size_t k, Raw_soup& part) {
+    const Text_chunk& ch = chunks[k];
+    if (ch.first_record >= nv + nf) return true;
+    const std::uint64_t last = std::min<std::uint64_t>(ch.first_record + ch.records, nv + nf);
+    const std::uint64_t in_v = ch.first_record < nv ? std::min<std::uint64_t>(last, nv) - ch.first_record : 0;
+    part.reserve(in_v, last - ch.first_record - in_v, 3 * (last - ch.first_record - in_v));
+    bool bad = false;
+    for_each_record(ch, '#', [&](std::uint64_t r, const char* lb, const char* le, std::size_t ln) {
+      if (r >= nv + nf) return false;  // past the faces: the rest is ignored
+      bad = true;  // until the record is read
+      Text_cursor c(lb, le);
+      if (r < nv) {
+        double v[4] = {0, 0, 0, 1};
+        for (std::int64_t d = 0; d < dim; ++d) {
+          double x;
+          c.skip_blank();
+          if (!c.parse_double(x)) return false;
+          if (d < 3)
+            v[d] = x;
+          else if (homogeneous && d == dim - 1)
+            v[3] = x;
+        }
+        if (homogeneous) {
+          v[0] /= v[3];
+          v[1] /= v[3];
+          v[2] /= v[3];
+        }
+        part.add_point(v[0], v[1], v[2], ln);
+        bad = false;
+        return true;
+      }
+      std::int64_t n, idx;
+      c.skip_blank();
+      if (!c.parse_int(n) || n < 0) return false;
+      for (std::int64_t i = 0; i < n; ++i) {
+        c.skip_blank();
+        if (!c.parse_int(idx)) return false;
+        part.add_index(idx);
+      }
+      part.end_polygon(ln);
+      bad = false;
+      return true;
+    });
+    return !bad;
+  });
+}
 
 inline bool read_off(const File_buffer& buf, const std::string& path, Raw_soup& soup, Error& err,
                      bool& binary)
@@ -69,8 +130,13 @@ inline bool read_off(const File_buffer& buf, const std::string& path, Raw_soup& 
     return fail(Status::parse_error, "expected the face count, got " + c.shown_token());
   c.skip_line();  // edge count and anything else on the counts line
 
-  std::size_t rest = static_cast<std::size_t>(c.end - c.p);
   soup.has_lines = true;
+  if (read_off_body_in_chunks(c.p, c.end, c.line, static_cast<std::uint64_t>(nv),
+                              static_cast<std::uint64_t>(nf), dim, homogeneous, soup))
+    return true;
+  soup = Raw_soup();
+  soup.has_lines = true;
+  std::size_t rest = static_cast<std::size_t>(c.end - c.p);
   // a vertex takes at least 6 bytes ("0 0 0\n"), a triangle at least 8
   soup.reserve(capped(static_cast<std::uint64_t>(nv), rest, 6),
                capped(static_cast<std::uint64_t>(nf), rest, 8),

@@ -9,8 +9,14 @@
 // is skipped by its type, so files with normals, colors, flags, edges or
 // materials read fine. Faces with fewer than 3 vertices (list count 0, 1 or 2)
 // are left out of the soup and counted in `Ply_skipped_faces`.
+// Binary elements of fixed-size records are checked against the data once and
+// decoded in parallel blocks (float or double x, y, z without a per-value
+// type switch); face elements are walked once to check every list and note
+// where each block of faces starts, then decoded in parallel. ASCII bodies
+// are parsed in parallel chunks of lines when each element is on one line.
 
 #include <mrepair/internal/io/common.h>
+#include <mrepair/internal/io/text_chunks.h>
 
 namespace mrepair {
 namespace internal {
@@ -139,6 +145,226 @@ inline void end_ply_face(Raw_soup& soup, std::size_t first_corner, std::uint64_t
   }
 }
 
+/// parses an ascii PLY body [b, e) starting on line `line`, one element per
+/// line, in parallel chunks (text_chunks.h); false when an element is not on
+/// one line or anything is wrong (nothing is kept then).
+inline bool read_ply_ascii_in_chunks(const char* b, const char* e, std::size_t line,
+                                     const std::vector<Ply_element>& elements, Raw_soup& soup,
+                                     Ply_skipped_faces& skipped)
+{
+  std::vector<Text_chunk> chunks = split_text(b, e, line, '\0');
+  // element k holds records [first[k], first[k + 1])
+  std::vector<std::uint64_t> first(elements.size() + 1, 0);
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    first[k + 1] = first[k] + elements[k].count;
+    if (first[k + 1] < first[k]) return false;
+  }
+  const std::uint64_t total = first.back();
+  const std::uint64_t records = chunks.empty() ? 0 : chunks.back().first_record + chunks.back().records;
+  if (records < total) return false;
+  std::vector<Ply_skipped_faces> part_skipped(chunks.size());
+  const bool ok = parse_chunks(chunks.size(), soup, [&](std::size_t k, Raw_soup& part) {
+    const Text_chunk& ch = chunks[k];
+    if (ch.first_record >= total) return true;
+    std::size_t el = static_cast<std::size_t>(
+        std::upper_bound(first.begin(), first.end(), ch.first_record) - first.begin() - 1);
+    const std::uint64_t n = std::min<std::uint64_t>(ch.records, total - ch.first_record);
+    part.reserve(n, n, 3 * n);
+    bool bad = false;
+    for_each_record(ch, '\0', [&](std::uint64_t r, const char* lb, const char* le, std::size_t ln) {
+      if (r >= total) return false;  // after the last element: ignored
+      while (r >= first[el + 1]) ++el;
+      const Ply_element& elem = elements[el];
+      bad = true;  // until the record is read
+      Text_cursor c(lb, le, '\0');
+      double xyz[3] = {0, 0, 0};
+      bool polygon = false;
+      const std::size_t first_corner = part.indices.size();
+      for (const Ply_property& prop : elem.properties) {
+        c.skip_blank();
+        if (c.at_end()) return false;
+        if (prop.is_list()) {
+          std::int64_t m, idx;
+          if (!c.parse_int(m) || m < 0) return false;
+          for (std::int64_t i = 0; i < m; ++i) {
+            c.skip_blank();
+            if (prop.role == 3) {
+              if (!c.parse_int(idx)) return false;
+              part.add_index(idx);
+            } else if (c.read_token().empty()) {
+              return false;
+            }
+          }
+          polygon = polygon || prop.role == 3;
+        } else if (prop.role >= 0) {
+          if (!c.parse_double(xyz[prop.role])) return false;
+        } else {
+          c.read_token();
+        }
+      }
+      c.skip_blank();
+      if (!c.at_end()) return false;  // more on the line: not one element per line
+      if (elem.name == "vertex") part.add_point(xyz[0], xyz[1], xyz[2], ln);
+      if (polygon) end_ply_face(part, first_corner, r - first[el], ln, part_skipped[k]);
+      bad = false;
+      return true;
+    });
+    return !bad;
+  });
+  if (!ok) return false;
+  for (const Ply_skipped_faces& s : part_skipped) {
+    if (s.count && skipped.count == 0) {
+      skipped.first = s.first;
+      skipped.first_line = s.first_line;
+    }
+    skipped.count += s.count;
+  }
+  return true;
+}
+
+/// one scalar of type `t` at `p` as double.
+inline double ply_scalar(const char* p, Ply_type t, bool swap)
+{
+  Ply_binary in{p, p + 8, swap};
+  return in.value(t);
+}
+
+/// decodes the x, y, z of `n` fixed-size records of `stride` bytes at `p`
+/// into `soup` (in parallel); float and double coordinates without the
+/// per-value type switch.
+inline void read_ply_fixed_points(const char* p, std::size_t stride, std::size_t n,
+                                  const Ply_element& e, bool swap, Raw_soup& soup)
+{
+  std::size_t off[3] = {0, 0, 0}, at = 0;
+  Ply_type type[3] = {Ply_type::none, Ply_type::none, Ply_type::none};
+  for (const Ply_property& prop : e.properties) {
+    if (prop.role >= 0 && prop.role <= 2) {
+      off[prop.role] = at;
+      type[prop.role] = prop.type;
+    }
+    at += ply_size(prop.type);
+  }
+  const std::size_t first = soup.xyz.size();
+  soup.xyz.resize(first + 3 * n);
+  double* out = soup.xyz.data() + first;
+  const bool same = type[0] == type[1] && type[1] == type[2];
+  const std::size_t block = 16384;
+  parallel_for_index((n + block - 1) / block, 1, [&](std::size_t k) {
+    const std::size_t b = k * block, e = std::min(n, b + block);
+    const char* r = p + b * stride;
+    double* o = out + 3 * b;
+    if (same && type[0] == Ply_type::f32 && !swap) {
+      for (std::size_t i = b; i < e; ++i, r += stride, o += 3)
+        for (int d = 0; d < 3; ++d) {
+          float f;
+          std::memcpy(&f, r + off[d], 4);
+          o[d] = static_cast<double>(f);
+        }
+    } else if (same && type[0] == Ply_type::f64 && !swap) {
+      for (std::size_t i = b; i < e; ++i, r += stride, o += 3)
+        for (int d = 0; d < 3; ++d) std::memcpy(o + d, r + off[d], 8);
+    } else {
+      for (std::size_t i = b; i < e; ++i, r += stride, o += 3)
+        for (int d = 0; d < 3; ++d) o[d] = ply_scalar(r + off[d], type[d], swap);
+    }
+  });
+}
+
+/// one integer of type `t` at `p`.
+inline std::int64_t ply_integer(const char* p, Ply_type t, bool swap)
+{
+  Ply_binary in{p, p + 8, swap};
+  return in.integer(t);
+}
+
+/// reads a binary face element (records with lists) in two passes: a
+/// sequential walk that checks every record against the end of the data and
+/// notes where each block of faces starts, then the index lists decoded
+/// in parallel, block by block, straight into `soup`. Faces with fewer than
+/// 3 vertices are skipped and counted.
+template <typename Truncated>
+bool read_ply_binary_faces(Ply_binary& in, const Ply_element& e, Raw_soup& soup,
+                           Ply_skipped_faces& skipped, const Truncated& truncated, Error& err,
+                           const std::string& path)
+{
+  struct Block
+  {
+    const char* p;
+    std::uint64_t face;
+    std::size_t corner, polygon;
+  };
+  const std::uint64_t block = 16384;
+  std::vector<Block> blocks;
+  std::size_t corners = 0, polygons = 0;
+  const char* const end = in.end;
+  const char* p = in.p;
+  for (std::uint64_t i = 0; i < e.count; ++i) {
+    if (i % block == 0) blocks.push_back(Block{p, i, corners, polygons});
+    for (const Ply_property& prop : e.properties) {
+      const std::size_t cs = ply_size(prop.count_type), sz = ply_size(prop.type);
+      if (!prop.is_list()) {
+        if (static_cast<std::size_t>(end - p) < sz) return truncated(i);
+        p += sz;
+        continue;
+      }
+      if (static_cast<std::size_t>(end - p) < cs) return truncated(i);
+      const std::int64_t n = ply_integer(p, prop.count_type, in.swap);
+      p += cs;
+      if (n < 0)
+        return err.set(Status::parse_error, path + ": element " + e.name + " " +
+                                                std::to_string(i) + ": negative list count");
+      if (static_cast<std::uint64_t>(n) > static_cast<std::uint64_t>(end - p) / sz)
+        return truncated(i);
+      p += static_cast<std::size_t>(n) * sz;
+      if (prop.role == 3) {
+        if (n >= 3) {
+          corners += static_cast<std::size_t>(n);
+          ++polygons;
+        } else {
+          skipped.add(i, 0);
+        }
+      }
+    }
+  }
+  blocks.push_back(Block{p, e.count, corners, polygons});
+  in.p = p;
+  const std::size_t idx0 = soup.indices.size(), poly0 = soup.num_polygons();
+  soup.indices.resize(idx0 + corners);
+  soup.starts.resize(poly0 + polygons + 1);
+  std::int64_t* const indices = soup.indices.data() + idx0;
+  std::size_t* const starts = soup.starts.data() + poly0;
+  parallel_for_index(blocks.size() - 1, 1, [&](std::size_t k) {
+    const char* r = blocks[k].p;
+    std::size_t corner = blocks[k].corner, polygon = blocks[k].polygon;
+    for (std::uint64_t i = blocks[k].face; i < blocks[k + 1].face; ++i)
+      for (const Ply_property& prop : e.properties) {
+        const std::size_t sz = ply_size(prop.type);
+        if (!prop.is_list()) {
+          r += sz;
+          continue;
+        }
+        const std::size_t n = static_cast<std::size_t>(ply_integer(r, prop.count_type, in.swap));
+        r += ply_size(prop.count_type);
+        if (prop.role == 3 && n >= 3) {
+          if (prop.type == Ply_type::i32 && !in.swap) {
+            for (std::size_t j = 0; j < n; ++j, r += 4) {
+              std::int32_t v;
+              std::memcpy(&v, r, 4);
+              indices[corner++] = v;
+            }
+          } else {
+            for (std::size_t j = 0; j < n; ++j, r += sz)
+              indices[corner++] = ply_integer(r, prop.type, in.swap);
+          }
+          starts[++polygon] = idx0 + corner;
+        } else {
+          r += n * sz;
+        }
+      }
+  });
+  return true;
+}
+
 inline bool read_ply(const File_buffer& buf, const std::string& path, Raw_soup& soup, Error& err,
                      bool& binary, Ply_skipped_faces* skipped_out = nullptr)
 {
@@ -260,6 +486,13 @@ inline bool read_ply(const File_buffer& buf, const std::string& path, Raw_soup& 
   }
 
   if (!binary) {
+    Ply_skipped_faces chunk_skipped;
+    if (read_ply_ascii_in_chunks(c.p, c.end, c.line, elements, soup, chunk_skipped)) {
+      skipped = chunk_skipped;
+      return true;
+    }
+    soup = Raw_soup();
+    soup.has_lines = true;
     for (const Ply_element& e : elements) {
       const bool is_vertex = e.name == "vertex";
       for (std::uint64_t i = 0; i < e.count; ++i) {
@@ -318,7 +551,7 @@ inline bool read_ply(const File_buffer& buf, const std::string& path, Raw_soup& 
                                               std::to_string(i) + " of " +
                                               std::to_string(e.count));
     };
-    // fixed-size records: check the whole element at once, then read unchecked
+    // fixed-size records: check the whole element at once, then decode in bulk
     std::size_t stride = 0;
     bool fixed = true;
     for (const Ply_property& prop : e.properties) {
@@ -330,26 +563,18 @@ inline bool read_ply(const File_buffer& buf, const std::string& path, Raw_soup& 
         std::uint64_t complete = static_cast<std::uint64_t>(in.end - in.p) / stride;
         return truncated(complete);
       }
-      if (!is_vertex) {
-        in.p += stride * e.count;
-        continue;
-      }
-      for (std::uint64_t i = 0; i < e.count; ++i) {
-        double xyz[3] = {0, 0, 0};
-        for (const Ply_property& prop : e.properties) {
-          if (prop.role >= 0)
-            xyz[prop.role] = in.value(prop.type);
-          else
-            in.p += ply_size(prop.type);
-        }
-        soup.add_point(xyz[0], xyz[1], xyz[2]);
-      }
+      if (is_vertex) read_ply_fixed_points(in.p, stride, static_cast<std::size_t>(e.count), e, in.swap, soup);
+      in.p += stride * e.count;
+      continue;
+    }
+    const bool faces = std::any_of(e.properties.begin(), e.properties.end(),
+                                   [](const Ply_property& q) { return q.role == 3; });
+    if (faces && !is_vertex) {
+      if (!read_ply_binary_faces(in, e, soup, skipped, truncated, err, path)) return false;
       continue;
     }
     for (std::uint64_t i = 0; i < e.count; ++i) {
       double xyz[3] = {0, 0, 0};
-      bool polygon = false;
-      const std::size_t first_corner = soup.indices.size();
       for (const Ply_property& prop : e.properties) {
         if (prop.is_list()) {
           if (!in.has(ply_size(prop.count_type))) return truncated(i);
@@ -360,12 +585,7 @@ inline bool read_ply(const File_buffer& buf, const std::string& path, Raw_soup& 
                                                     std::to_string(i) + ": negative list count");
           if (static_cast<std::uint64_t>(n) > static_cast<std::uint64_t>(in.end - in.p) / sz)
             return truncated(i);
-          if (prop.role == 3) {
-            for (std::int64_t k = 0; k < n; ++k) soup.add_index(in.integer(prop.type));
-            polygon = true;
-          } else {
-            in.p += static_cast<std::size_t>(n) * sz;
-          }
+          in.p += static_cast<std::size_t>(n) * sz;
         } else {
           if (!in.has(ply_size(prop.type))) return truncated(i);
           if (prop.role >= 0)
@@ -375,7 +595,6 @@ inline bool read_ply(const File_buffer& buf, const std::string& path, Raw_soup& 
         }
       }
       if (is_vertex) soup.add_point(xyz[0], xyz[1], xyz[2]);
-      if (polygon) end_ply_face(soup, first_corner, i, 0, skipped);
     }
   }
   return true;

@@ -26,7 +26,7 @@ class Point_merger
     std::uint32_t tag;    // 32 hash bits
     std::uint32_t index;  // point index + 1; 0 = empty
   };
-  std::vector<Slot> slots_;
+  Big_vector<Slot> slots_;
   std::size_t mask_ = 0;
   std::size_t used_ = 0;
   Raw_soup& soup_;
@@ -49,7 +49,7 @@ class Point_merger
   }
   void grow()
   {
-    std::vector<Slot> old;
+    Big_vector<Slot> old;
     old.swap(slots_);
     slots_.assign(2 * old.size(), Slot{0, 0, 0, 0, 0});
     mask_ = slots_.size() - 1;
