@@ -51,10 +51,12 @@ void defects(Mesh& m, mrepair::Report& r)
 {
   mrepair::Geometric_statistics<Mesh> st(m);
   st.compute_all();
+  // the defaults of the library's own parameter readers (definitions.h)
+  std::string unused;
   SC::Near_degenerate_settings nd;
-  nd.skinny_angle = SC::to_radians(10);
+  SC::read_near_degenerate_settings(mrepair::parameters::default_values(), st.edge_count(), nd, unused);
   SC::Spike_settings sp;
-  sp.spike_angle = SC::to_radians(100);
+  SC::read_spike_settings(mrepair::parameters::default_values(), sp, unused);
   std::size_t by_height = 0;
   const std::size_t spiked = SC::count_spiked(st, sp, &by_height);
   std::size_t border = 0;
