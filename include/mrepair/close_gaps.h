@@ -115,7 +115,7 @@ constexpr Automatic_gap_tolerance automatic_gap_tolerance{};
 ///   fewer than 16 candidates: tolerance 0 (no seams to read a distribution from)
 ///   sort the candidate distances; knee = the first jump by 2x above their 90% quantile
 ///   (the largest one when there is none)
-///   tolerance = min(1.5 x knee, 0.5 x median of l(v))
+///   tolerance = 1.5 x knee
 /// \endcode
 /// Seam partners (both sides of a crack, a T-junction vertex and the edge it
 /// sits on) are far nearer than the edges around them; the rim of a real hole is

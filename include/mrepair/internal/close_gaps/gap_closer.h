@@ -782,7 +782,9 @@ private:
         if (!removed) o = check_face(t, t, moved, cand);
       }
       // no vertex drifts farther than the tolerance from its input position
-      if (o == done && has_orig_[moved] && sqdist(cand, p3(orig_[moved])) > max_dist_ * max_dist_) o = displaced;
+      // (one not moved yet is at its input position)
+      if (o == done && sqdist(cand, has_orig_[moved] ? p3(orig_[moved]) : pos(moved)) > max_dist_ * max_dist_)
+        o = displaced;
       if (o == done) {
         to = cand;
         placed = true;

@@ -28,7 +28,6 @@ constexpr double gap_candidate_ratio = 1.0;    // candidate: partner nearer than
 constexpr double gap_knee_jump = 2.0;          // a knee: the next distance at least this factor larger
 constexpr double gap_knee_start = 0.9;         // knees are looked for above this quantile of the candidates
 constexpr double gap_tolerance_margin = 1.5;   // room for the distances changing while the gap closes
-constexpr double gap_max_edge_share = 0.5;     // the tolerance stays under half the median boundary edge
 constexpr std::size_t gap_min_candidates = 16; // fewer: no distribution to read a knee from (tolerance 0)
 
 template <class TriangleMesh, class VertexPointMap>
@@ -156,9 +155,7 @@ Gap_tolerance_estimate estimate_tolerance(const TriangleMesh& tm, const VertexPo
     }
   e.knee_distance = c[knee];
   e.above_knee = c.size() - 1 - knee;
-  // a gap is narrower than the edges along it: a larger value would zip real
-  // boundaries edge by edge
-  e.tolerance = std::min(gap_tolerance_margin * c[knee], gap_max_edge_share * e.median_edge_length);
+  e.tolerance = gap_tolerance_margin * c[knee];
   // coincident seams only: a positive limit still lets the zero-distance pairs close
   if (!(e.tolerance > 0)) e.tolerance = 1e-9 * e.median_edge_length;
   return e;
