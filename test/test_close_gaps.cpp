@@ -405,6 +405,171 @@ TYPED_TEST(Close_gaps, report_and_cancel)
   EXPECT_NE(rep.to_json().find("\"vertex_vertex\""), std::string::npos);
 }
 
+// ---- automatic tolerance and CAD-like seams (issue 18) ----------------------
+
+namespace {
+
+// a lens: an icosphere of radius 1 flattened to half-thickness `t` along z (a
+// thin part with a sharp rim, like a turbine blade's trailing edge), as two
+// patches with their own vertices: the faces above z = 0 and the others; the
+// lower patch is shifted by `shift` in x, so that the rim seam has a crack.
+Soup split_lens(double t, double shift, int levels = 3)
+{
+  Soup sphere = icosphere(levels, 1.0);
+  Soup s;
+  std::vector<std::size_t> copy[2];
+  copy[0].assign(sphere.points.size(), std::size_t(-1));
+  copy[1].assign(sphere.points.size(), std::size_t(-1));
+  for (const Polygon& f : sphere.polygons) {
+    double cz = 0;
+    for (std::size_t v : f) cz += sphere.points[v].z();
+    const int side = cz > 0 ? 0 : 1;
+    Polygon g;
+    for (std::size_t v : f) {
+      if (copy[side][v] == std::size_t(-1)) {
+        copy[side][v] = s.points.size();
+        const Point& p = sphere.points[v];
+        s.points.emplace_back(p.x() + (side ? shift : 0.), p.y(), t * p.z());
+      }
+      g.push_back(copy[side][v]);
+    }
+    s.polygons.push_back(g);
+  }
+  return s;
+}
+
+// faces whose normal points towards the lens centre (a flip on a convex part).
+template <class Mesh>
+std::size_t inward_faces(const Mesh& m)
+{
+  std::size_t n = 0;
+  for (auto f : faces(m)) {
+    std::vector<Point> p;
+    for (auto v : CGAL::vertices_around_face(halfedge(f, m), m)) p.push_back(point(m, v));
+    const K::Vector_3 nrm = CGAL::cross_product(p[1] - p[0], p[2] - p[0]);
+    const K::Vector_3 c = ((p[0] - CGAL::ORIGIN) + (p[1] - CGAL::ORIGIN) + (p[2] - CGAL::ORIGIN)) / 3.;
+    if (nrm * c < 0) ++n;
+  }
+  return n;
+}
+
+// two 10 x 10 patches of [0,1]^2 and [1+gap, 2+gap] x [0,1] with a square hole
+// of 2 x 2 cells (rim 8 edges of 0.1) cut out of the first.
+Soup two_patches_and_a_hole(double gap, std::size_t right_rows = 10)
+{
+  Soup s;
+  add_patch(s, 0.0, 1.0, 10, 1.0, 10);
+  std::vector<Polygon> kept;
+  for (std::size_t k = 0; k < s.polygons.size(); ++k) {
+    const std::size_t cell = k / 2, i = cell % 10, j = cell / 10;
+    if (i >= 4 && i <= 5 && j >= 4 && j <= 5) continue;
+    kept.push_back(s.polygons[k]);
+  }
+  s.polygons = kept;
+  // drop the hole's centre, left without faces
+  const std::size_t centre = 5 * 11 + 5;
+  s.points.erase(s.points.begin() + centre);
+  for (Polygon& f : s.polygons)
+    for (std::size_t& v : f)
+      if (v > centre) --v;
+  add_patch(s, 1.0 + gap, 1.0, 10, 1.0, right_rows);
+  return s;
+}
+
+} // namespace
+
+TYPED_TEST(Close_gaps, automatic_tolerance_closes_seams_not_a_hole)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh m = to_mesh<Mesh>(two_patches_and_a_hole(0.01));
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  ASSERT_EQ(border_loops(m), 3u);
+
+  const mrepair::Gap_tolerance_estimate e = mrepair::estimate_gap_tolerance(m);
+  EXPECT_EQ(e.status, mrepair::Status::ok);
+  // the seam pairs are 0.01 apart; the hole's rim is 0.1 from itself at least
+  EXPECT_GE(e.tolerance, 0.01);
+  EXPECT_LT(e.tolerance, 0.05);
+  EXPECT_EQ(e.candidates, 22u);  // 11 vertices on each side of the seam
+
+  mrepair::Gap_closing_result r = mrepair::close_gaps(m, mrepair::automatic_gap_tolerance);
+  EXPECT_EQ(r.status, mrepair::Status::ok);
+  EXPECT_TRUE(r.tolerance_estimated);
+  EXPECT_DOUBLE_EQ(r.tolerance, e.tolerance);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_EQ(seam_border_edges(m, 0.95, 1.06), 0u);
+  EXPECT_EQ(border_loops(m), 2u);  // the outline and the hole
+  EXPECT_EQ(r.boundary_edges_after, 60u + 8u);
+  EXPECT_LE(r.max_displacement, r.tolerance);
+  EXPECT_GT(r.max_displacement, 0.);
+}
+
+TYPED_TEST(Close_gaps, automatic_tolerance_t_junction_seam)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh m = to_mesh<Mesh>(two_patches_and_a_hole(0.01, 20));  // 11 against 21 seam vertices
+  mrepair::Gap_closing_result r = mrepair::close_gaps(m, mrepair::automatic_gap_tolerance);
+  EXPECT_EQ(r.status, mrepair::Status::ok);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_EQ(r.vertex_edge, 10u);  // the 10 right vertices between the matches split left edges
+  EXPECT_EQ(seam_border_edges(m, 0.95, 1.06), 0u);
+  EXPECT_EQ(border_loops(m), 2u);
+}
+
+TYPED_TEST(Close_gaps, automatic_tolerance_of_closed_and_holed_meshes_is_zero)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh sphere = to_mesh<Mesh>(icosphere(2));
+  EXPECT_EQ(mrepair::estimate_gap_tolerance(sphere).tolerance, 0.);
+  Soup s = two_patches_and_a_hole(0.01);
+  s.polygons.resize(s.polygons.size() - 200);  // the first patch alone: an outline and a hole
+  s.points.resize(s.points.size() - 121);
+  Mesh m = to_mesh<Mesh>(s);
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  const auto sig = signature(m);
+  const mrepair::Gap_tolerance_estimate e = mrepair::estimate_gap_tolerance(m);
+  EXPECT_EQ(e.tolerance, 0.);
+  EXPECT_EQ(e.candidates, 0u);
+  auto r = mrepair::close_gaps(m, mrepair::automatic_gap_tolerance);
+  EXPECT_EQ(r.status, mrepair::Status::ok);
+  EXPECT_EQ(r.operations, 0u);
+  EXPECT_EQ(signature(m), sig);
+}
+
+TYPED_TEST(Close_gaps, gaps_wider_than_the_tolerance_stay_open)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh m = to_mesh<Mesh>(two_patches_and_a_hole(0.03));
+  const auto sig = signature(m);
+  auto r = mrepair::close_gaps(m, 0.02);
+  EXPECT_EQ(r.status, mrepair::Status::ok);
+  EXPECT_EQ(r.operations, 0u);
+  EXPECT_EQ(border_loops(m), 3u);
+  EXPECT_EQ(signature(m), sig);
+}
+
+TYPED_TEST(Close_gaps, blade_like_thin_part_closes_without_flips)
+{
+  using Mesh = typename TypeParam::Mesh;
+  // half-thickness 0.03 against a rim crack of 0.004: near the rim the two
+  // sides are nearer to each other than the tolerance
+  Mesh m = to_mesh<Mesh>(split_lens(0.03, 0.004));
+  ASSERT_EQ(border_loops(m), 2u);
+  ASSERT_EQ(inward_faces(m), 0u);
+  for (int automatic = 0; automatic < 2; ++automatic) {
+    Mesh c = m;
+    auto r = automatic ? mrepair::close_gaps(c, mrepair::automatic_gap_tolerance)
+                       : mrepair::close_gaps(c, 0.02);
+    EXPECT_EQ(r.status, mrepair::Status::ok);
+    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(c));
+    EXPECT_EQ(border_edges(c), 0u) << "automatic " << automatic;
+    EXPECT_TRUE(CGAL::is_closed(c));
+    EXPECT_EQ(inward_faces(c), 0u);
+    EXPECT_EQ(r.pinched_vertices, 0u);
+    EXPECT_LE(r.max_displacement, r.tolerance);
+  }
+}
+
 #ifdef MREPAIR_CLI
 #include <mrepair/io.h>
 

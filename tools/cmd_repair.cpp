@@ -26,7 +26,9 @@ const std::vector<cli::Option>& repair_options()
 {
   static const std::vector<cli::Option> o = {
       {"profile", true, "auto|scan|cad: which cleaning steps apply (auto: decided from the mesh)"},
-      {"close-gaps", true, "close boundary gaps narrower than T (model units; 0: off)"},
+      {"close-gaps", true,
+       "close boundary gaps narrower than T (model units; 0: off; default: a tolerance derived from "
+       "the input on CAD exports and print models, none on scans)"},
       {"merge-epsilon", true, "merge soup points closer than E before stitching (0)"},
       {"spike-angle", true, "dihedral angle (degrees) of a spiked vertex (relax_spikes default)"},
       {"max-hole", true, "holes with fewer boundary vertices are filled (100 scan, 500 cad)"},
@@ -91,6 +93,7 @@ int run_repair(int argc, char** argv)
   mrepair::Repair_options options;
   options.profile = profile;
   options.gap_tolerance = gap;
+  options.automatic_gap_tolerance = !a.has("close-gaps");  // --close-gaps 0 turns it off
   options.merge_epsilon = merge;
   options.spike_angle = spike;
   if (a.has("max-hole")) options.max_hole_vertices = hole_n;  // else the profile picks the limit
@@ -101,6 +104,13 @@ int run_repair(int argc, char** argv)
     if (quiet) return;
     const std::string s = stage;
     if (s == "before") print_inspection("before", r.before, quiet);
+    if (s == "close_gaps") {
+      const mrepair::Gap_closing_result& g = r.gaps;
+      std::cerr << "close gaps: tolerance " << g.tolerance
+                << (g.tolerance_estimated ? " (derived from the input)" : " (given)") << ", "
+                << g.operations << " contractions, boundary edges " << g.boundary_edges_before << " -> "
+                << g.boundary_edges_after << ", largest displacement " << g.max_displacement << "\n";
+    }
     if (s == "clean")
       std::cerr << "profile: " << mrepair::to_string(r.clean.profile.profile)
                 << (r.clean.profile.chosen_by_user ? " (chosen)" : "") << ": "
@@ -129,7 +139,7 @@ int run_repair(int argc, char** argv)
 }
 
 cli::Registrar reg{{"repair",
-                    "INPUT OUTPUT [--profile auto|scan|cad] [--close-gaps T] [--max-hole N] [--min-component N]",
+                    "INPUT OUTPUT [--profile auto|scan|cad] [--close-gaps T|0] [--max-hole N] [--min-component N]",
                     "soup to manifold, gap closing, cleaning by input profile, validity: the whole job",
                     run_repair}};
 

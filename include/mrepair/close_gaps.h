@@ -8,11 +8,14 @@
 /// boundary vertex or edge in order of distance, so that cracks, narrow gaps
 /// and T-junctions between patches close while wider gaps stay open.
 /// `close_gaps()` runs it once; `Gap_closing_sequence` steps forward and
-/// backward through the contractions.
+/// backward through the contractions. `estimate_gap_tolerance()` derives the
+/// tolerance from the input (doc/close_gaps.md), and
+/// `close_gaps(tm, automatic_gap_tolerance)` uses it.
 
 #include <mrepair/gap_closing_result.h>
 #include <mrepair/gap_closing_sequence.h>
 #include <mrepair/internal/close_gaps/run.h>
+#include <mrepair/internal/close_gaps/tolerance.h>
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
 #include <mrepair/status.h>
@@ -20,6 +23,8 @@
 
 #include <limits>
 #include <memory>
+
+MREPAIR_ADD_NAMED_PARAMETER(gap_bridge_max_edges)  // std::size_t: narrow loops bridged at the end (400; 0: none)
 
 namespace mrepair {
 
@@ -31,6 +36,7 @@ namespace mrepair {
 ///   seq = Gap_closing_sequence(tm, tolerance, np)
 ///   while seq.step(tolerance): poll visitor (progress, stop)
 ///   split pinched vertices (duplicate_non_manifold_vertices) so the output is manifold
+///   bridge the loops left that are narrower than tolerance / 2 (triangulate_hole)
 /// \endcode
 ///
 /// \tparam TriangleMesh model of `MutableFaceGraph`, triangulated
@@ -51,6 +57,10 @@ namespace mrepair {
 ///   - `gap_max_operations(std::size_t)` (unlimited)
 ///   - `gap_split_pinched_vertices(bool)` (true): split vertices left with several
 ///     fans at the end, so that the output is manifold
+///   - `gap_bridge_max_edges(std::size_t)` (400): at the end, fill the boundary loops
+///     of at most that many edges that are narrower than tolerance / 2 (twice
+///     their area over their perimeter): cracks whose contractions all flip a
+///     sliver face; nothing moves (0: no bridging)
 /// \pre `CGAL::is_valid_polygon_mesh(tm)` (checked in debug builds only)
 /// \return `Gap_closing_result`; `tm` untouched when `status` reports bad input
 ///   (`empty_input`, `non_finite_input`, `invalid_mesh`, `invalid_parameter`;
@@ -66,6 +76,7 @@ Gap_closing_result close_gaps(TriangleMesh& tm, double tolerance,
   const std::size_t max_ops = internal::get_or(np, internal_np::gap_max_operations,
                                                std::numeric_limits<std::size_t>::max());
   const bool split = internal::get_or(np, internal_np::gap_split_pinched_vertices, true);
+  const std::size_t bridge = internal::get_or(np, internal_np::gap_bridge_max_edges, std::size_t(400));
 
   std::unique_ptr<Gap_closing_sequence<TriangleMesh, VPM>> seq;
   {
@@ -75,13 +86,83 @@ Gap_closing_result close_gaps(TriangleMesh& tm, double tolerance,
   if (seq->status() != Status::ok) return seq->result();
   const bool cancelled = internal::step_to_limit(*seq, visitor, max_ops);
   Gap_closing_result r = seq->result();
-  if (split && r.pinched_vertices > 0 && r.status == Status::ok) {
-    VPM vpm = CGAL::parameters::choose_parameter(
-        CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
-        get_property_map(CGAL::vertex_point, tm));
+  VPM vpm = CGAL::parameters::choose_parameter(
+      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+      get_property_map(CGAL::vertex_point, tm));
+  if (split && r.pinched_vertices > 0 && r.status == Status::ok)
     internal::split_pinched_vertices(tm, vpm, visitor, r);
-  }
+  // a pinched vertex left (keep-pinched) would make a bridge non-manifold
+  if (bridge >= 3 && !cancelled && r.status == Status::ok && r.pinched_vertices == 0 &&
+      r.boundary_edges_after > 0)
+    internal::bridge_narrow_loops(tm, vpm, r.tolerance, bridge, visitor, r);
   if (cancelled) r.status = Status::cancelled;
+  return r;
+}
+
+/// \ingroup mrepair_gaps
+/// the tag of `close_gaps(tm, automatic_gap_tolerance, np)`.
+struct Automatic_gap_tolerance {};
+constexpr Automatic_gap_tolerance automatic_gap_tolerance{};
+
+/// \ingroup mrepair_gaps
+/// derives a gap-closing tolerance from the mesh itself.
+///
+/// \code
+///   for each boundary vertex v:
+///     l(v) = its longest boundary edge
+///     d(v) = distance to the nearest boundary edge touching neither v nor a loop
+///            neighbour of v; a candidate when d(v) < l(v)
+///   fewer than 16 candidates: tolerance 0 (no seams to read a distribution from)
+///   sort the candidate distances; knee = the first jump by 2x above their 90% quantile
+///   (the largest one when there is none)
+///   tolerance = 1.5 x knee
+/// \endcode
+/// Seam partners (both sides of a crack, a T-junction vertex and the edge it
+/// sits on) are far nearer than the edges around them; the rim of a real hole is
+/// not nearer than an edge length to itself, so it is no candidate; the few
+/// narrow features above the knee stay open.
+///
+/// \tparam TriangleMesh model of `FaceGraph`
+/// \param np optional: `vertex_point_map`
+/// \return `Gap_tolerance_estimate`; `tolerance` 0 when the mesh has no boundary
+///   vertex with a near partner (closed meshes, real holes only);
+///   `status` `non_finite_input` when a boundary vertex is not finite
+template <typename TriangleMesh,
+          typename NamedParameters = CGAL::parameters::Default_named_parameters>
+Gap_tolerance_estimate estimate_gap_tolerance(const TriangleMesh& tm,
+                                              const NamedParameters& np = CGAL::parameters::default_values())
+{
+  auto vpm = CGAL::parameters::choose_parameter(
+      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+      get_const_property_map(CGAL::vertex_point, tm));
+  return internal::estimate_tolerance(tm, vpm);
+}
+
+/// \ingroup mrepair_gaps
+/// `close_gaps()` with the tolerance of `estimate_gap_tolerance()`
+/// (`gap_relative_tolerance` is ignored). The result says `tolerance_estimated`
+/// and carries the estimate; with no candidate the mesh is left untouched and
+/// the result reports zero operations.
+template <typename TriangleMesh,
+          typename NamedParameters = CGAL::parameters::Default_named_parameters>
+Gap_closing_result close_gaps(TriangleMesh& tm, Automatic_gap_tolerance,
+                              const NamedParameters& np = CGAL::parameters::default_values())
+{
+  const Gap_tolerance_estimate e = estimate_gap_tolerance(tm, np);
+  Gap_closing_result r;
+  if (e.status != Status::ok) {
+    r.status = e.status;
+    r.message = "a boundary vertex coordinate is NaN or infinite";
+  } else if (e.tolerance > 0) {
+    // the estimate is absolute: the outermost option wins over a caller's relative flag
+    r = close_gaps(tm, e.tolerance, parameters::gap_relative_tolerance(false, np));
+  } else {
+    const auto counts = internal::count_boundary(tm);
+    r.boundary_edges_before = r.boundary_edges_after = counts.first;
+    r.boundary_loops_before = r.boundary_loops_after = counts.second;
+  }
+  r.tolerance_estimated = true;
+  r.estimate = e;
   return r;
 }
 

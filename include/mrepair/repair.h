@@ -5,7 +5,8 @@
 /// \file repair.h
 /// The whole repair job on a polygon soup, as `mrepair repair` and the Python
 /// `mrepair.repair` run it: soup to manifold mesh (when the input is not one),
-/// gap closing (when asked), the cleaning pipeline with the steps of the
+/// gap closing (with a tolerance derived from the input on CAD exports and
+/// print models, or the one given), the cleaning pipeline with the steps of the
 /// input's profile (a scan gets RameshCleaner, a CAD export or print model
 /// keeps its geometry and parts and gets its holes closed), then the validity
 /// check; inspection before and after, and a face accounting that reconciles.
@@ -42,7 +43,12 @@ struct Repair_result;
 struct Repair_options
 {
   Input_profile profile = Input_profile::automatic;  ///< which cleaning steps apply
-  double gap_tolerance = 0.;           ///< close boundary gaps narrower than this (model units; 0: off)
+  /// close boundary gaps narrower than this (model units); 0: see `automatic_gap_tolerance`
+  double gap_tolerance = 0.;
+  /// with `gap_tolerance` 0: on an input of the `cad` profile (chosen or
+  /// classified), close gaps with the tolerance of `estimate_gap_tolerance()`;
+  /// scans are left alone. false: no gap closing unless `gap_tolerance` > 0.
+  bool automatic_gap_tolerance = true;
   double merge_epsilon = 0.;           ///< merge soup points closer than this before stitching
   /// dihedral angle (degrees) of a spiked vertex; NaN: the default of
   /// `relax_spikes()` for cleaning and 100 for the inspections
@@ -53,7 +59,8 @@ struct Repair_options
   std::size_t min_component_faces = 400;   ///< components with fewer faces are removed
   std::size_t max_clean_iterations = 5;    ///< cleaning iteration cap
   bool count_self_intersections = true;    ///< in the inspection after the repair
-  /// called after the stages "before" (input inspected), "clean" (profile
+  /// called after the stages "before" (input inspected), "close_gaps" (when it
+  /// ran), "clean" (profile
   /// chosen) and "after" (output inspected), with the result so far: lets a
   /// caller print while the job runs
   std::function<void(const char* stage, const Repair_result& so_far)> after_stage;
@@ -73,6 +80,8 @@ struct Repair_result
   Inspection_report before;   ///< the input soup
   Inspection_report after;    ///< the output mesh (filled when the job ran to its end)
   Scan_cleaning_result clean; ///< the cleaning pipeline (its `profile` says which ran and why)
+  bool gaps_closed = false;   ///< the gap closing ran (`gaps` is filled)
+  Gap_closing_result gaps;    ///< its result: tolerance (and whether estimated), largest displacement
   std::size_t faces_in = 0, faces_out = 0;  ///< in triangles
   std::vector<std::pair<std::string, std::size_t>> faces_removed, faces_added;  ///< by reason
   Report sections;            ///< the report sections of the stages reached, in order
@@ -87,7 +96,7 @@ struct Repair_result
   }
 
   /// writes the sections of the stages reached: `before`, `soup_to_manifold`,
-  /// `triangulation` (when polygons were triangulated), `close_gaps` (when asked),
+  /// `triangulation` (when polygons were triangulated), `close_gaps` (when it ran),
   /// `clean`, `face_accounting`, `after` (the keys of `mrepair repair --json`
   /// without the file sections `input` and `output`).
   void to_report(Report& r) const { r.append(sections); }
@@ -105,7 +114,9 @@ struct Repair_result
 ///   polygon_soup_to_manifold_mesh (merge_epsilon)         -- stops on failure
 /// points, polygons <- cleared (the mesh holds the data)
 /// triangulate polygons with more than three sides          -- stops on failure
-/// close_gaps(gap_tolerance) when gap_tolerance > 0          -- stops on failure
+/// close_gaps(gap_tolerance) when gap_tolerance > 0, else
+///   close_gaps(automatic_gap_tolerance) when automatic_gap_tolerance and
+///   classify_input(profile) is cad                          -- stops on failure
 /// clean_scan_mesh with the input's profile                  -- stops on failure
 /// face accounting over every stage; after <- inspect(out)
 /// \endcode
@@ -216,19 +227,28 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   }
   if (stop_requested()) return fail("soup_to_manifold", Status::cancelled, "");
 
-  // 2. Gap closing, when asked.
-  if (gap > 0.) {
+  // 2. Gap closing: with the tolerance given, or derived from the input on
+  // CAD exports and print models (their seams are what gap closing is for; a
+  // scan's holes are not gaps).
+  bool automatic = false;
+  if (!(gap > 0.) && options.automatic_gap_tolerance)
+    automatic = classify_input(out, MP::input_profile(options.profile)).profile == Input_profile::cad;
+  if (gap > 0. || automatic) {
     Gap_closing_result g;
     const std::size_t f0 = static_cast<std::size_t>(faces(out).size());
     {
       internal::Phase_scope<Handle> phase(visitor, "close_gaps");
-      g = close_gaps(out, gap, CGAL::parameters::visitor(std::ref(forward)));
+      g = gap > 0. ? close_gaps(out, gap, CGAL::parameters::visitor(std::ref(forward)))
+                   : close_gaps(out, automatic_gap_tolerance, CGAL::parameters::visitor(std::ref(forward)));
     }
+    result.gaps_closed = true;
+    result.gaps = g;
     const std::size_t f1 = static_cast<std::size_t>(faces(out).size());
     // vertex-edge contractions split the faces they land on
     if (f1 > f0) added.emplace_back("close_gaps_splits", f1 - f0);
     if (f0 > f1) removed.emplace_back("close_gaps", f0 - f1);
     g.to_report(report.section("close_gaps"));
+    stage_done("close_gaps");
     if (!succeeded(g.status)) return fail("close_gaps", g.status, "");
   }
 

@@ -6,12 +6,15 @@
 // sample a shared seam with different densities (T-junctions), some seams are
 // pulled apart (narrow gaps); then flipped, duplicate and degenerate faces,
 // fins (non-manifold edges) and pinched vertices are added, all counted.
+// The part mode does the same to a real clean part (make_cad_soup_from_part).
 #ifndef MREPAIR_TOOLS_GENERATOR_CAD_H
 #define MREPAIR_TOOLS_GENERATOR_CAD_H
 
 #include "generator/common.h"
 
+#include <algorithm>
 #include <functional>
+#include <limits>
 #include <numeric>
 
 namespace mrepair {
@@ -370,6 +373,215 @@ inline Tri_soup make_cad_soup(const Cad_options& o, std::uint64_t seed, Cad_resu
     std::uint32_t g = add_face(t[0], x, y);  // touches the surface at t[0] only
     res.defects.push_back({"pinched_vertex", "face_attached_by_one_vertex", {t[0], x, y}, {g}, v});
   }
+  return soup;
+}
+
+/// options of the part mode (`make_cad_soup_from_part`).
+struct Cad_part_options
+{
+  std::size_t patches = 48;    // patch size cap: faces / patches (sharp edges split further)
+  double sharp_cos = 0.8660254037844386;  // cos 30 degrees: a dihedral turn above 30 degrees is a feature
+  double perturbation = 1e-4;  // G: seam vertices moved by up to G * bbox diagonal (and 1/4 of their faces' heights)
+  double gap_fraction = 0.3;   // share of patches shifted rigidly by 1-3 G (cracks)
+  double refine_fraction = 0.5;  // share of seams whose one side gets its edges split (T-junctions)
+};
+
+struct Cad_part_result
+{
+  std::size_t patches = 0, sharp_patches = 0, seams = 0, refined_seams = 0, shifted_patches = 0;
+  std::size_t clean_boundary_edges = 0;  // of the (upsampled) clean part: not seams
+  std::size_t seam_edges = 0;            // boundary edges of the soup that are seams
+  std::size_t t_junction_vertices = 0;   // seam vertices of one side not at a vertex of the other
+  double diagonal = 0, max_gap = 0, perturbation_absolute = 0;
+};
+
+/// turns a clean triangle mesh (a real part) into a CAD-like soup: patches
+/// grown from random seeds up to a size cap and never across a sharp edge,
+/// each owning its vertices; seam vertices perturbed; on some seams one side's
+/// edges split at (perturbed) midpoints, so that its new vertices lie on the
+/// other side's edges (T-junctions); some patches shifted rigidly (cracks).
+inline Tri_soup make_cad_soup_from_part(const Tri_soup& part, const Cad_part_options& o,
+                                        std::uint64_t seed, Cad_part_result& res)
+{
+  Random rng(seed);
+  const std::size_t F = part.faces.size(), V = part.points.size();
+  Vec3 lo = part.points.empty() ? Vec3{0, 0, 0} : part.points[0], hi = lo;
+  for (const Vec3& p : part.points)
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], p[d]);
+      hi[d] = std::max(hi[d], p[d]);
+    }
+  res.diagonal = norm(hi - lo);
+  const double G = o.perturbation * res.diagonal;
+  res.perturbation_absolute = G;
+
+  // edge -> faces (sorted keys); a manifold edge has two entries
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> ef(3 * F);
+  for (std::size_t f = 0; f < F; ++f)
+    for (int k = 0; k < 3; ++k) {
+      std::uint64_t a = part.faces[f][k], b = part.faces[f][(k + 1) % 3];
+      ef[3 * f + k] = {(std::min(a, b) << 32) | std::max(a, b), static_cast<std::uint32_t>(f)};
+    }
+  std::sort(ef.begin(), ef.end());
+  const std::uint32_t none = 0xffffffffu;
+  std::vector<std::array<std::uint32_t, 3>> nbr(F, {none, none, none});  // across edge k
+  auto edge_slot = [&](std::uint32_t f, std::uint64_t key) {
+    for (int k = 0; k < 3; ++k) {
+      std::uint64_t a = part.faces[f][k], b = part.faces[f][(k + 1) % 3];
+      if (((std::min(a, b) << 32) | std::max(a, b)) == key) return k;
+    }
+    return 0;
+  };
+  for (std::size_t i = 0; i < ef.size();) {
+    std::size_t j = i;
+    while (j < ef.size() && ef[j].first == ef[i].first) ++j;
+    if (j - i == 1) ++res.clean_boundary_edges;
+    if (j - i == 2) {
+      std::uint32_t f = ef[i].second, g = ef[i + 1].second;
+      nbr[f][edge_slot(f, ef[i].first)] = g;
+      nbr[g][edge_slot(g, ef[i].first)] = f;
+    }
+    i = j;
+  }
+  std::vector<Vec3> fn(F);
+  std::vector<double> min_height(V, std::numeric_limits<double>::max());
+  for (std::size_t f = 0; f < F; ++f) {
+    const Tri& t = part.faces[f];
+    Vec3 n = cross(part.points[t[1]] - part.points[t[0]], part.points[t[2]] - part.points[t[0]]);
+    double longest = std::max({norm(part.points[t[1]] - part.points[t[0]]), norm(part.points[t[2]] - part.points[t[1]]),
+                               norm(part.points[t[0]] - part.points[t[2]])});
+    double h = longest > 0 ? norm(n) / longest : 0;
+    for (std::uint32_t v : t) min_height[v] = std::min(min_height[v], h);
+    fn[f] = normalized(n);
+  }
+
+  // region growing: seeds in a shuffled order, breadth first, not across sharp edges
+  std::vector<std::uint32_t> order(F);
+  std::iota(order.begin(), order.end(), 0u);
+  for (std::size_t i = F; i > 1; --i) std::swap(order[i - 1], order[rng.below(i)]);
+  const std::size_t cap = std::max<std::size_t>(50, F / std::max<std::size_t>(1, o.patches));
+  std::vector<std::uint32_t> patch(F, none);
+  std::vector<std::uint32_t> queue;
+  std::uint32_t np = 0;
+  for (std::uint32_t s : order) {
+    if (patch[s] != none) continue;
+    queue.assign(1, s);
+    patch[s] = np;
+    bool stopped_by_feature = false;
+    for (std::size_t q = 0; q < queue.size() && queue.size() < cap; ++q) {
+      std::uint32_t f = queue[q];
+      for (int k = 0; k < 3 && queue.size() < cap; ++k) {
+        std::uint32_t g = nbr[f][k];
+        if (g == none || patch[g] != none) continue;
+        if (dot(fn[f], fn[g]) < o.sharp_cos) {
+          stopped_by_feature = true;
+          continue;
+        }
+        patch[g] = np;
+        queue.push_back(g);
+      }
+    }
+    res.sharp_patches += stopped_by_feature;
+    ++np;
+  }
+  res.patches = np;
+
+  // seams: patch pairs sharing edges; one side of some gets split edges
+  std::vector<std::uint64_t> seam_keys;
+  for (std::size_t f = 0; f < F; ++f)
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t g = nbr[f][k];
+      if (g != none && patch[g] != patch[f] && patch[f] < patch[g])
+        seam_keys.push_back((std::uint64_t(patch[f]) << 32) | patch[g]);
+    }
+  std::sort(seam_keys.begin(), seam_keys.end());
+  seam_keys.erase(std::unique(seam_keys.begin(), seam_keys.end()), seam_keys.end());
+  res.seams = seam_keys.size();
+  std::vector<std::uint32_t> refined_side(seam_keys.size(), none);  // the patch whose edges are split
+  for (std::size_t i = 0; i < seam_keys.size(); ++i)
+    if (rng.uniform() < o.refine_fraction) {
+      refined_side[i] = rng.below(2) ? std::uint32_t(seam_keys[i] >> 32) : std::uint32_t(seam_keys[i] & 0xffffffffu);
+      ++res.refined_seams;
+    }
+  std::vector<Vec3> shift(np, Vec3{0, 0, 0});
+  for (std::uint32_t p = 0; p < np; ++p)
+    if (rng.uniform() < o.gap_fraction) {
+      double w = rng.uniform(1, 3) * G;
+      shift[p] = w * rng.direction();
+      res.max_gap = std::max(res.max_gap, w);
+      ++res.shifted_patches;
+    }
+
+  // faces grouped by patch; each patch owns copies of its vertices
+  std::vector<std::uint32_t> by_patch(F);
+  std::iota(by_patch.begin(), by_patch.end(), 0u);
+  std::stable_sort(by_patch.begin(), by_patch.end(), [&](std::uint32_t a, std::uint32_t b) { return patch[a] < patch[b]; });
+  Tri_soup soup;
+  std::vector<std::uint32_t> stamp(V, none), copy(V, none);
+  std::vector<char> seam_vertex(V, 0);
+  for (std::size_t f = 0; f < F; ++f)
+    for (int k = 0; k < 3; ++k)
+      if (nbr[f][k] != none && patch[nbr[f][k]] != patch[f])
+        seam_vertex[part.faces[f][k]] = seam_vertex[part.faces[f][(k + 1) % 3]] = 1;
+  auto perturbed = [&](const Vec3& q, double height) {
+    double g = std::min(G, 0.25 * height);
+    return g > 0 ? q + (g * rng.uniform()) * rng.direction() : q;
+  };
+  for (std::uint32_t f : by_patch) {
+    const std::uint32_t p = patch[f];
+    Tri t;
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t v = part.faces[f][k];
+      if (stamp[v] != p) {
+        stamp[v] = p;
+        copy[v] = static_cast<std::uint32_t>(soup.points.size());
+        Vec3 q = seam_vertex[v] ? perturbed(part.points[v], min_height[v]) : part.points[v];
+        soup.points.push_back(q + shift[p]);
+      }
+      t[k] = copy[v];
+    }
+    // split the one edge of this face on a refined seam side (faces with several: left whole)
+    int split = -1, count = 0;
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t g = nbr[f][k];
+      if (g == none || patch[g] == p) continue;
+      std::uint64_t key = (std::uint64_t(std::min(p, patch[g])) << 32) | std::max(p, patch[g]);
+      std::size_t i = std::lower_bound(seam_keys.begin(), seam_keys.end(), key) - seam_keys.begin();
+      if (refined_side[i] == p) {
+        split = k;
+        ++count;
+      }
+    }
+    if (count != 1) {
+      soup.faces.push_back(t);
+      continue;
+    }
+    const std::uint32_t a = t[split], b = t[(split + 1) % 3], c = t[(split + 2) % 3];
+    const std::uint32_t oa = part.faces[f][split], ob = part.faces[f][(split + 1) % 3];
+    Vec3 m = 0.5 * (part.points[oa] + part.points[ob]);
+    std::uint32_t mid = static_cast<std::uint32_t>(soup.points.size());
+    soup.points.push_back(perturbed(m, 0.5 * std::min(min_height[oa], min_height[ob])) + shift[p]);
+    soup.faces.push_back({a, mid, c});
+    soup.faces.push_back({mid, b, c});
+    ++res.t_junction_vertices;
+  }
+  // seam edges: boundary edges of the soup that were not boundary in the part
+  std::vector<std::uint64_t> keys;
+  keys.reserve(3 * soup.faces.size());
+  for (const Tri& t : soup.faces)
+    for (int k = 0; k < 3; ++k) {
+      std::uint64_t a = t[k], b = t[(k + 1) % 3];
+      keys.push_back((std::min(a, b) << 32) | std::max(a, b));
+    }
+  std::sort(keys.begin(), keys.end());
+  std::size_t boundary = 0;
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i;
+    while (j < keys.size() && keys[j] == keys[i]) ++j;
+    boundary += j - i == 1;
+    i = j;
+  }
+  res.seam_edges = boundary - res.clean_boundary_edges;
   return soup;
 }
 

@@ -273,6 +273,7 @@ public:
     if (status_ != Status::ok) return r;
     r.operations = pos_;
     for (std::size_t i = 0; i < pos_; ++i) (ops_[i].kind == vv ? r.vertex_vertex : r.vertex_edge)++;
+    r.alternative_placements = alternative_placements_;
     r.rejected_flip = rejected_flip_;
     r.rejected_degenerate = rejected_degenerate_;
     r.rejected_non_manifold = rejected_non_manifold_;
@@ -755,22 +756,44 @@ private:
       if (pr.kind == vv && c != moved && !std::binary_search(nbr_.begin(), nbr_.end(), c)) continue;
       if (!star_ok(c, op.removed, op.added)) return non_manifold;
     }
-    // geometry: the added faces against the faces they replace, the moved vertex's other faces against themselves
-    for (std::size_t i = 0; i < op.added.size(); ++i) {
-      Outcome o = check_face(op.added[i], ref[i], moved, to);
-      if (o != done) return o;
+    // geometry, for the merged position λv + (1-λ)v' first, then for either
+    // end (λ = 1, λ = 0): a sliver on one side of a seam flips under the
+    // midpoint but not when only the other side moves. The first placement
+    // that flips, degenerates and displaces nothing wins.
+    std::array<P3, 3> place{{to, pu, pos(moved)}};  // vertex-vertex: λ, on u, on w
+    if (pr.kind == ve) {  // vertex-edge: λ, u in place, u on its projection
+      double t = 0;
+      const P3 pa = pos(a), pb = pos(b);
+      seg_dist(pu, pa, pb, t);
+      for (int d = 0; d < 3; ++d) place[2][d] = pa[d] + t * (pb[d] - pa[d]);
     }
     star(moved, tmp_);
-    for (const Tri& t : tmp_) {
-      bool removed = false;
-      for (const Tri& r : op.removed) removed = removed || same_face(t, r);
-      if (removed) continue;
-      Outcome o = check_face(t, t, moved, to);
-      if (o != done) return o;
+    Outcome first = done;
+    bool placed = false;
+    for (int k = 0; k < 3 && !placed; ++k) {
+      if (k > 0 && place[k] == place[0]) continue;
+      const P3& cand = place[k];
+      Outcome o = done;
+      for (std::size_t i = 0; i < op.added.size() && o == done; ++i) o = check_face(op.added[i], ref[i], moved, cand);
+      for (const Tri& t : tmp_) {
+        if (o != done) break;
+        bool removed = false;
+        for (const Tri& r : op.removed) removed = removed || same_face(t, r);
+        if (!removed) o = check_face(t, t, moved, cand);
+      }
+      // no vertex drifts farther than the tolerance from its input position
+      // (one not moved yet is at its input position)
+      if (o == done && sqdist(cand, has_orig_[moved] ? p3(orig_[moved]) : pos(moved)) > max_dist_ * max_dist_)
+        o = displaced;
+      if (o == done) {
+        to = cand;
+        placed = true;
+        if (k > 0) ++alternative_placements_;
+      } else if (k == 0) {
+        first = o;
+      }
     }
-
-    // no vertex drifts farther than the tolerance from its input position
-    if (has_orig_[moved] && sqdist(to, p3(orig_[moved])) > max_dist_ * max_dist_) return displaced;
+    if (!placed) return first;
     // boundary edges around the affected vertices before the edit
     border_edges_around(affected_, before_);
     Point to_point(to[0], to[1], to[2]);
@@ -974,6 +997,7 @@ private:
   std::vector<Op> ops_;
   std::size_t pos_ = 0;
 
+  std::size_t alternative_placements_ = 0;  // contractions placed at an end, not at the λ point
   std::size_t rejected_flip_ = 0, rejected_degenerate_ = 0, rejected_non_manifold_ = 0,
               rejected_failed_ = 0, rejected_displacement_ = 0;
   std::size_t boundary_edges_before_ = 0, boundary_loops_before_ = 0;
