@@ -37,7 +37,8 @@ using mrepair::cli::Usage_error;
 const std::vector<Option>& options()
 {
   static const std::vector<Option> o = {
-      {"tolerance", true, "largest gap closed (absolute; a fraction of the bbox diagonal with --relative)"},
+      {"tolerance", true, "largest gap closed (absolute; a fraction of the bbox diagonal with --relative; "
+                          "auto: estimated from the input's boundaries)"},
       {"relative", false, "--tolerance and --to-distance are relative to the bounding-box diagonal"},
       {"steps", true, "stop after K contractions (of the sequence within the tolerance)"},
       {"to-distance", true,
@@ -178,7 +179,10 @@ int run(int argc, char** argv)
   if (a.has("steps") && a.has("to-distance")) throw Usage_error("give --steps or --to-distance, not both");
   if (load && a.has("save-sequence") && a.get("load-sequence") == a.get("save-sequence"))
     throw Usage_error("--save-sequence would overwrite the --load-sequence file");
-  const double tol = a.get_double("tolerance", 0);
+  // --tolerance auto: estimate_gap_tolerance() on the input (doc/close_gaps.md)
+  const bool auto_tolerance = a.has("tolerance") && a.get("tolerance") == "auto";
+  if (auto_tolerance && a.has("relative")) throw Usage_error("--tolerance auto is absolute: drop --relative");
+  double tol = auto_tolerance ? 0. : a.get_double("tolerance", 0);
   const long long steps = a.get_int("steps", -1);
   const double to_distance = a.get_double("to-distance", -1);
   const double lambda = a.get_double("lambda", 0.5);
@@ -187,7 +191,7 @@ int run(int argc, char** argv)
   if (lambda < 0 || lambda > 1) throw Usage_error("--lambda must be in [0,1]");
   if (a.has("steps") && steps < 0) throw Usage_error("--steps must be >= 0");
   if (a.has("to-distance") && to_distance < 0) throw Usage_error("--to-distance must be >= 0");
-  if (a.has("to-distance") && !load && to_distance > tol)
+  if (a.has("to-distance") && !load && !auto_tolerance && to_distance > tol)
     throw Usage_error("--to-distance must not exceed --tolerance");
   if (rows < 1 || rows > 100000) throw Usage_error("--profile-rows must be in [1, 100000]");
   const bool has_box = a.has("box");
@@ -266,6 +270,15 @@ int run(int argc, char** argv)
     for (auto v : vertices(mesh)) put(region, v, get(region, v) && get(listed, v) ? 1 : 0);
   }
 
+  if (auto_tolerance) {
+    const mrepair::Gap_tolerance_estimate e = mrepair::estimate_gap_tolerance(mesh);
+    e.to_report(report.section("tolerance_estimate"));
+    tol = e.tolerance;
+    if (!a.has("quiet"))
+      std::cerr << "  tolerance (estimated): " << tol << " from " << e.candidates << " candidates\n";
+    if (a.has("to-distance") && to_distance > tol)
+      throw Usage_error("--to-distance must not exceed the estimated tolerance (" + std::to_string(tol) + ")");
+  }
   const bool sequence = a.has("steps") || a.has("to-distance") || a.has("save-sequence") || load ||
                         a.has("profile-table");
   const bool fingerprint = load || a.has("save-sequence");

@@ -89,6 +89,7 @@ int run_repair(int argc, char** argv)
       in.status != mrepair::Status::invalid_index)
     return cli::fail(in.message.empty() ? a.positional[0] + ": cannot read" : in.message);
   in.to_report(report.section("input"));
+  report.section("input").add("seconds", t);
 
   mrepair::Repair_options options;
   options.profile = profile;
@@ -132,6 +133,7 @@ int run_repair(int argc, char** argv)
   t = cli::timed([&] { out = mrepair::write_polygon_mesh(a.positional[1], mesh, a.has("binary")); });
   if (!quiet) std::cerr << "  write: " << std::to_string(t).substr(0, 6) << " s\n";
   out.to_report(report.section("output"));
+  report.section("output").add("seconds", t);
   if (!cli::emit_report(a, report)) return 1;
   if (out.status != mrepair::Status::ok)
     return cli::fail(out.message.empty() ? a.positional[1] + ": cannot write" : out.message);

@@ -26,6 +26,7 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -58,7 +59,7 @@ struct Repair_options
   std::size_t max_hole_vertices = 0;
   std::size_t min_component_faces = 400;   ///< components with fewer faces are removed
   std::size_t max_clean_iterations = 5;    ///< cleaning iteration cap
-  bool count_self_intersections = true;    ///< in the inspection after the repair
+  bool count_self_intersections = true;    ///< in the inspections before and after the repair
   /// called after the stages "before" (input inspected), "close_gaps" (when it
   /// ran), "clean" (profile
   /// chosen) and "after" (output inspected), with the result so far: lets a
@@ -172,10 +173,19 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
                     comp_n = options.min_component_faces;
 
   const double inspect_spike = std::isnan(spike) ? 100. : spike;  // inspect's default is 100
+  // Each stage's wall time goes into its report section ("seconds"): the
+  // phase breakdown of the whole job.
+  auto since = [](std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  auto t_stage = std::chrono::steady_clock::now();
   auto thresholds = MP::max_hole_vertices(
-      hole_n, MP::min_component_faces(comp_n, MP::spike_angle(inspect_spike)));
+      hole_n, MP::min_component_faces(comp_n, MP::spike_angle(
+                                                  inspect_spike, MP::count_self_intersections(
+                                                                     options.count_self_intersections))));
   result.before = inspect_polygon_soup(points, polygons, thresholds);
   result.before.to_report(report.section("before"));
+  report.section("before").add("seconds", since(t_stage));
   stage_done("before");
   if (stop_requested()) return fail("before", Status::cancelled, "");
 
@@ -187,6 +197,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   for (const auto& poly : polygons) faces_in += poly.size() >= 3 ? poly.size() - 2 : 1;
 
   // 1. A manifold mesh, built directly when the soup already is one.
+  t_stage = std::chrono::steady_clock::now();
   bool finite = true;
   for (const Point& p : points)
     finite = finite && std::isfinite(CGAL::to_double(p.x())) &&
@@ -225,6 +236,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
       return result;
     }
   }
+  report.section("soup_to_manifold").add("seconds", since(t_stage));
   if (stop_requested()) return fail("soup_to_manifold", Status::cancelled, "");
 
   // 2. Gap closing: with the tolerance given, or derived from the input on
@@ -234,8 +246,9 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   if (!(gap > 0.) && options.automatic_gap_tolerance)
     automatic = classify_input(out, MP::input_profile(options.profile)).profile == Input_profile::cad;
   if (gap > 0. || automatic) {
+    t_stage = std::chrono::steady_clock::now();
     Gap_closing_result g;
-    const std::size_t f0 = static_cast<std::size_t>(faces(out).size());
+    const std::size_t f0 = internal::face_count(out);
     {
       internal::Phase_scope<Handle> phase(visitor, "close_gaps");
       g = gap > 0. ? close_gaps(out, gap, CGAL::parameters::visitor(std::ref(forward)))
@@ -243,11 +256,12 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
     }
     result.gaps_closed = true;
     result.gaps = g;
-    const std::size_t f1 = static_cast<std::size_t>(faces(out).size());
+    const std::size_t f1 = internal::face_count(out);
     // vertex-edge contractions split the faces they land on
     if (f1 > f0) added.emplace_back("close_gaps_splits", f1 - f0);
     if (f0 > f1) removed.emplace_back("close_gaps", f0 - f1);
     g.to_report(report.section("close_gaps"));
+    report.section("close_gaps").add("seconds", since(t_stage));
     stage_done("close_gaps");
     if (!succeeded(g.status)) return fail("close_gaps", g.status, "");
   }
@@ -274,7 +288,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
     if (c.steps[i].faces_added) added.emplace_back(clean_step_name(i), c.steps[i].faces_added);
   }
   result.faces_in = faces_in;
-  result.faces_out = static_cast<std::size_t>(faces(out).size());
+  result.faces_out = internal::face_count(out);
   {
     Report& fa = report.section("face_accounting");
     fa.add("faces_in", result.faces_in);
@@ -288,12 +302,14 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
     fa.add("reconciles", result.faces_reconcile());
   }
 
+  t_stage = std::chrono::steady_clock::now();
   result.after = inspect(
       out, MP::max_hole_vertices(
                hole_n, MP::min_component_faces(
                            comp_n, MP::spike_angle(inspect_spike, MP::count_self_intersections(
                                                                       options.count_self_intersections)))));
   result.after.to_report(report.section("after"));
+  report.section("after").add("seconds", since(t_stage));
   stage_done("after");
   result.status = c.status;
   return result;

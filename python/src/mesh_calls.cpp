@@ -45,12 +45,7 @@ py::tuple close_gaps(const py::object& vertices, const py::object& faces,
                      const std::optional<long long>& steps, double lambda, bool keep_pinched,
                      const py::object& progress)
 {
-  if (!tolerance)
-    raise_value_error(
-        "close_gaps needs a tolerance: mrepair has no automatic tolerance yet (the command "
-        "requires --tolerance too); pass tolerance=T in model units, or a fraction of the "
-        "bounding-box diagonal with relative=True");
-  if (!(*tolerance >= 0) || !std::isfinite(*tolerance))
+  if (tolerance && (!(*tolerance >= 0) || !std::isfinite(*tolerance)))
     raise_value_error("tolerance must be finite and >= 0");
   if (!(lambda >= 0 && lambda <= 1)) raise_value_error("lambda_ must be in [0, 1]");
   if (steps && *steps < 0) raise_value_error("steps must be >= 0");
@@ -80,13 +75,14 @@ py::tuple close_gaps(const py::object& vertices, const py::object& faces,
   const std::size_t max_ops =
       steps ? static_cast<std::size_t>(*steps) : std::numeric_limits<std::size_t>::max();
   const auto t0 = std::chrono::steady_clock::now();
+  const auto np =
+      MP::gap_relative_tolerance(
+          relative, MP::gap_lambda(lambda, MP::gap_split_pinched_vertices(
+                                               !keep_pinched, MP::gap_max_operations(max_ops))))
+          .visitor(std::ref(visitor));
   const Gap_closing_result r = without_gil([&] {
-    return mrepair::close_gaps(
-        mesh, *tolerance,
-        MP::gap_relative_tolerance(
-            relative, MP::gap_lambda(lambda, MP::gap_split_pinched_vertices(
-                                                 !keep_pinched, MP::gap_max_operations(max_ops))))
-            .visitor(std::ref(visitor)));
+    return tolerance ? mrepair::close_gaps(mesh, *tolerance, np)
+                     : mrepair::close_gaps(mesh, mrepair::automatic_gap_tolerance, np);
   });
   Report& section = report.section("close_gaps");
   r.to_report(section);
@@ -316,8 +312,9 @@ close-gaps`). An input that is not a valid polygon mesh is repaired as a soup
 first (a UserWarning says so; section "soup" of the report).
 
 tolerance: largest gap closed, in model units (a fraction of the bounding-box
-  diagonal with relative=True). None raises ValueError: there is no automatic
-  tolerance yet, and the command requires --tolerance too.
+  diagonal with relative=True). None: estimated from the input's boundaries
+  (`mrepair close-gaps --tolerance auto`, doc/close_gaps.md); the report gives
+  the estimate.
 steps: stop after this many contractions (None: all within the tolerance).
 lambda_: a contracted vertex moves to lambda_ v + (1 - lambda_) v'.
 keep_pinched: do not split vertices left with several fans.

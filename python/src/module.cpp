@@ -138,19 +138,22 @@ py::tuple soup_to_manifold(const py::object& vertices, const py::object& faces, 
 
 // `mrepair repair`: the whole job of repair.h.
 py::tuple repair(const py::object& vertices, const py::object& faces, const std::string& profile,
-                 double close_gaps, double merge_epsilon, const std::optional<double>& spike_angle,
+                 const std::optional<double>& close_gaps, double merge_epsilon, const std::optional<double>& spike_angle,
                  const std::optional<long long>& max_hole, long long min_component,
                  long long iterations, bool self_intersections, const py::object& progress)
 {
   Repair_options options;
   if (!parse_input_profile(profile, options.profile))
     raise_value_error("profile must be 'auto', 'scan' or 'cad', got '" + profile + "'");
-  if (!(close_gaps >= 0) || !(merge_epsilon >= 0) || !std::isfinite(close_gaps) ||
-      !std::isfinite(merge_epsilon))
+  const double gap = close_gaps ? *close_gaps : 0.;
+  if (!(gap >= 0) || !(merge_epsilon >= 0) || !std::isfinite(gap) || !std::isfinite(merge_epsilon))
     raise_value_error("close_gaps and merge_epsilon must be finite and >= 0");
   if ((max_hole && *max_hole < 1) || min_component < 1 || iterations < 0)
     raise_value_error("max_hole and min_component must be >= 1, iterations >= 0");
-  options.gap_tolerance = close_gaps;
+  options.gap_tolerance = gap;
+  // as `mrepair repair`: None lets a CAD-profile input get the automatic
+  // tolerance, 0 turns gap closing off, T > 0 closes gaps up to T
+  options.automatic_gap_tolerance = !close_gaps;
   options.merge_epsilon = merge_epsilon;
   options.spike_angle = spike_angle ? *spike_angle : std::numeric_limits<double>::quiet_NaN();
   if (max_hole) options.max_hole_vertices = static_cast<std::size_t>(*max_hole);
@@ -244,7 +247,7 @@ progress: None or progress(phase, fraction); returning False cancels
   (mrepair.Cancelled), as Ctrl-C does (KeyboardInterrupt).)doc");
 
   m.def("repair", &mp::repair, "V"_a, "F"_a, py::kw_only(), "profile"_a = "auto",
-        "close_gaps"_a = 0.0, "merge_epsilon"_a = 0.0, "spike_angle"_a = py::none(),
+        "close_gaps"_a = py::none(), "merge_epsilon"_a = 0.0, "spike_angle"_a = py::none(),
         "max_hole"_a = py::none(), "min_component"_a = 400, "iterations"_a = 5,
         "self_intersections"_a = true, "progress"_a = py::none(),
         R"doc(Returns (V, F, report).
@@ -255,10 +258,12 @@ the input's profile (a dense scan gets RameshCleaner, a CAD export or print
 model keeps its geometry and parts and gets its holes closed), the validity
 step. The report is that of `mrepair repair --json` without the file
 sections: before, soup_to_manifold, triangulation (when polygons were
-triangulated), close_gaps (when asked), clean, face_accounting, after.
+triangulated), close_gaps (when run), clean, face_accounting, after.
 
 profile: "auto" (decided from the mesh), "scan" or "cad".
-close_gaps: close boundary gaps narrower than this (model units; 0: off).
+close_gaps: close boundary gaps narrower than this (model units); None: a CAD
+  or print model gets the automatic tolerance (see doc/close_gaps.md), a scan
+  none; 0: off.
 merge_epsilon: merge soup points closer than this before stitching.
 spike_angle: dihedral angle (degrees) of a spiked vertex (None: the default).
 max_hole: holes with fewer boundary vertices are filled (None: 100 scan, 500 cad).

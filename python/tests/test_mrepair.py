@@ -139,11 +139,14 @@ def test_close_gaps():
     assert one["close_gaps"]["operations"] == 1
 
 
-def test_close_gaps_needs_a_tolerance():
+def test_close_gaps_estimates_the_tolerance():
     V, F = two_sheets(1e-3)
+    V2, F2, report = mrepair.close_gaps(V, F)
+    g = report["close_gaps"]
+    assert g["status"] == "ok" and g["tolerance_chosen_by"] == "auto"
+    assert "tolerance_estimate" in g
+    assert g["boundary_loops_after"] <= g["boundary_loops_before"]
     with pytest.raises(ValueError, match="tolerance"):
-        mrepair.close_gaps(V, F)
-    with pytest.raises(ValueError):
         mrepair.close_gaps(V, F, -1.0)
 
 
@@ -236,7 +239,13 @@ def test_clean_triangulates_polygons_and_refuses_soups():
 def test_repair_a_defective_soup():
     V, F = defective_soup()
     V2, F2, report = mrepair.repair(V, F)
-    assert list(report) == ["before", "soup_to_manifold", "clean", "face_accounting", "after"]
+    # a small soup is classified as a CAD/print model: its gaps are closed
+    # with the automatic tolerance, unless close_gaps=0 turns that off
+    stages = ["before", "soup_to_manifold", "clean", "face_accounting", "after"]
+    assert list(report) in (stages, stages[:2] + ["close_gaps"] + stages[2:])
+    if "close_gaps" in report:
+        assert report["close_gaps"]["tolerance_chosen_by"] == "auto"
+    assert list(mrepair.repair(V, F, close_gaps=0)[2]) == stages
     assert report["soup_to_manifold"]["needed"] is True
     accounting = report["face_accounting"]
     assert accounting["reconciles"] is True and accounting["faces_out"] == len(F2)

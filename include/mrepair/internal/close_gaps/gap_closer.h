@@ -151,7 +151,9 @@ public:
 #else
     const bool valid = true;
 #endif
-    if (!valid || nh - border.size() != 3 * std::size_t(num_faces(tm))) {
+    // face_count: BGL num_faces() counts the removed faces a Surface_mesh keeps
+    // after stepping back, which refused every closing of a stepped mesh
+    if (!valid || nh - border.size() != 3 * face_count(tm)) {
       refuse(Status::invalid_mesh, "the input is not a valid triangle mesh");
       return;
     }

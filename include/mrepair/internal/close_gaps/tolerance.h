@@ -29,6 +29,14 @@ constexpr double gap_knee_jump = 2.0;          // a knee: the next distance at l
 constexpr double gap_knee_start = 0.9;         // knees are looked for above this quantile of the candidates
 constexpr double gap_tolerance_margin = 1.5;   // room for the distances changing while the gap closes
 constexpr std::size_t gap_min_candidates = 16; // fewer: no distribution to read a knee from (tolerance 0)
+// A CAD exporter's seam gaps come from tessellating a shared curve twice to a
+// chord tolerance: 1e-4 to 1e-3 of the part's size (the generated soups of
+// doc/close_gaps.md: 0.0007 to 0.0015 of the diagonal). A knee farther than 1%
+// of the boundary's diagonal is the model's own narrow features: on small
+// real meshes (CGAL's nm_vertices_pinched, non-conform_snapping-overlap,
+// geometry-central's triple_vierbein) such tolerances zipped real holes and
+// removed 10-15% of the faces.
+constexpr double gap_max_diagonal_share = 0.01;
 
 template <class TriangleMesh, class VertexPointMap>
 Gap_tolerance_estimate estimate_tolerance(const TriangleMesh& tm, const VertexPointMap& vpm)
@@ -155,7 +163,7 @@ Gap_tolerance_estimate estimate_tolerance(const TriangleMesh& tm, const VertexPo
     }
   e.knee_distance = c[knee];
   e.above_knee = c.size() - 1 - knee;
-  e.tolerance = gap_tolerance_margin * c[knee];
+  e.tolerance = std::min(gap_tolerance_margin * c[knee], gap_max_diagonal_share * distance(lo, hi));
   // coincident seams only: a positive limit still lets the zero-distance pairs close
   if (!(e.tolerance > 0)) e.tolerance = 1e-9 * e.median_edge_length;
   return e;
