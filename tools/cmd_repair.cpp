@@ -34,7 +34,9 @@ const std::vector<cli::Option>& repair_options()
       {"max-hole", true, "holes with fewer boundary vertices are filled (100 scan, 500 cad)"},
       {"min-component", true, "components with fewer faces are removed (400)"},
       {"iterations", true, "cleaning iteration cap (5)"},
-      {"no-self-intersections", false, "do not count self-intersections in the inspections"},
+      {"no-self-intersections", false, "do not count self-intersections in the inspection of the output"},
+      {"input-self-intersections", false,
+       "count self-intersections in the inspection of the input too (off: 1.9 s of a 6.8 s job at 1M faces)"},
       {"binary", false, "write a binary file (PLY, STL)"}};
   return o;
 }
@@ -101,6 +103,7 @@ int run_repair(int argc, char** argv)
   options.min_component_faces = comp_n;
   options.max_clean_iterations = static_cast<std::size_t>(iterations);
   options.count_self_intersections = count_si;
+  options.count_input_self_intersections = a.has("input-self-intersections");
   options.after_stage = [&](const char* stage, const mrepair::Repair_result& r) {
     if (quiet) return;
     const std::string s = stage;

@@ -140,7 +140,8 @@ py::tuple soup_to_manifold(const py::object& vertices, const py::object& faces, 
 py::tuple repair(const py::object& vertices, const py::object& faces, const std::string& profile,
                  const std::optional<double>& close_gaps, double merge_epsilon, const std::optional<double>& spike_angle,
                  const std::optional<long long>& max_hole, long long min_component,
-                 long long iterations, bool self_intersections, const py::object& progress)
+                 long long iterations, bool self_intersections, bool input_self_intersections,
+                 const py::object& progress)
 {
   Repair_options options;
   if (!parse_input_profile(profile, options.profile))
@@ -160,6 +161,7 @@ py::tuple repair(const py::object& vertices, const py::object& faces, const std:
   options.min_component_faces = static_cast<std::size_t>(min_component);
   options.max_clean_iterations = static_cast<std::size_t>(iterations);
   options.count_self_intersections = self_intersections;
+  options.count_input_self_intersections = input_self_intersections;
 
   Soup s = soup_from(vertices, faces);
   Python_visitor visitor(progress);
@@ -249,7 +251,8 @@ progress: None or progress(phase, fraction); returning False cancels
   m.def("repair", &mp::repair, "V"_a, "F"_a, py::kw_only(), "profile"_a = "auto",
         "close_gaps"_a = py::none(), "merge_epsilon"_a = 0.0, "spike_angle"_a = py::none(),
         "max_hole"_a = py::none(), "min_component"_a = 400, "iterations"_a = 5,
-        "self_intersections"_a = true, "progress"_a = py::none(),
+        "self_intersections"_a = true, "input_self_intersections"_a = false,
+        "progress"_a = py::none(),
         R"doc(Returns (V, F, report).
 
 The whole job of `mrepair repair`, keeping the user's model: soup to manifold
@@ -270,6 +273,8 @@ max_hole: holes with fewer boundary vertices are filled (None: 100 scan, 500 cad
 min_component: components with fewer faces are removed (relative to the largest).
 iterations: cleaning iteration cap.
 self_intersections: count self-intersections in the inspection after.
+input_self_intersections: count them in the inspection before too (off by
+  default: they cost more than the cleaning on a 1M-face scan).
 Raises ValueError with the stage and the reason when a stage fails.
 progress: None or progress(phase, fraction); returning False cancels
   (mrepair.Cancelled), as Ctrl-C does (KeyboardInterrupt).)doc");
