@@ -536,6 +536,41 @@ TYPED_TEST(Close_gaps, automatic_tolerance_of_closed_and_holed_meshes_is_zero)
   EXPECT_EQ(signature(m), sig);
 }
 
+// Regression (CGAL's nm_vertices_pinched.off, geometry-central's
+// triple_vierbein.obj through `mrepair repair`): two slits of a plate, one
+// row of thin faces apart. Every rim vertex facing the other slit has a
+// partner nearer than its edges, so the knee rule alone chose 1.5 x that
+// distance and zipped the row away (10-15% of the faces of those meshes).
+// A real model's narrow strip is no exporter's seam: the tolerance stays
+// within 1% of the boundary's diagonal and nothing moves.
+TYPED_TEST(Close_gaps, automatic_tolerance_leaves_a_narrow_strip_between_holes)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  add_patch(s, 0.0, 2.0, 20, 2.0, 20);  // cells of 0.1 over [0,2]^2
+  std::vector<Polygon> kept;
+  for (std::size_t k = 0; k < s.polygons.size(); ++k) {
+    const std::size_t cell = k / 2, i = cell % 20, j = cell / 20;
+    if (i >= 3 && i <= 16 && (j == 8 || j == 10)) continue;  // the two slits
+    kept.push_back(s.polygons[k]);
+  }
+  s.polygons = kept;
+  for (std::size_t i = 3; i <= 17; ++i) s.points[10 * 21 + i] = Point(0.1 * double(i), 0.95, 0.);
+  Mesh m = to_mesh<Mesh>(s);
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  ASSERT_EQ(border_loops(m), 3u);
+  const auto sig = signature(m);
+  const mrepair::Gap_tolerance_estimate e = mrepair::estimate_gap_tolerance(m);
+  EXPECT_GE(e.candidates, 16u);                 // both rims of the strip: enough for a knee
+  EXPECT_LE(e.tolerance, 0.01 * std::sqrt(8.));  // the boundary's diagonal
+  EXPECT_LT(e.tolerance, 0.05);                  // the strip is 0.05 wide
+  auto r = mrepair::close_gaps(m, mrepair::automatic_gap_tolerance);
+  EXPECT_EQ(r.status, mrepair::Status::ok);
+  EXPECT_EQ(r.operations, 0u);
+  EXPECT_EQ(signature(m), sig);
+  EXPECT_EQ(border_loops(m), 3u);
+}
+
 TYPED_TEST(Close_gaps, gaps_wider_than_the_tolerance_stay_open)
 {
   using Mesh = typename TypeParam::Mesh;
