@@ -18,6 +18,7 @@
 // counts as an error. CGAL has no NaN handling: its variants get the faces
 // around non-finite vertices removed before the timer starts.
 #include "bench.h"
+#include "cgal_chain.h"
 
 #include <mrepair/clean_scan_mesh.h>
 #include <mrepair/inspect.h>
@@ -186,19 +187,7 @@ mrepair::bench::Measurement run_cgal(const std::string& path, bool experimental)
       PMP::keep_large_connected_components(m, kMinComponent);
   t2.stop();
   t3.start();
-  std::vector<Mesh::Halfedge_index> loops;
-  PMP::extract_boundary_cycles(m, std::back_inserter(loops));
-  std::size_t filled = 0, failed = 0;
-  for (auto h : loops) {
-    std::size_t n = 0;
-    for (auto g : CGAL::halfedges_around_face(h, m)) { (void)g; ++n; }
-    if (n >= kMaxHole) continue;
-    std::vector<Mesh::Face_index> fs;
-    std::vector<Mesh::Vertex_index> vs;
-    auto res = PMP::triangulate_refine_and_fair_hole(m, h, std::back_inserter(fs),
-                                                     std::back_inserter(vs));
-    if (std::get<0>(res)) ++filled; else ++failed;
-  }
+  const auto [filled, failed] = mrepair::bench::fill_small_holes_with_cgal(m, kMaxHole);
   t3.stop();
   bool deg_ok = true, si_ok = true;
   if (experimental) {

@@ -22,6 +22,7 @@
 // read to after the write; its phases are timed one by one. Both outputs are
 // read back and inspected by the same code (mrepair::inspect), untimed.
 #include "bench.h"
+#include "cgal_chain.h"
 
 #include <mrepair/inspect.h>
 #include <mrepair/io.h>
@@ -251,22 +252,8 @@ mrepair::bench::Measurement run_mrepair(const std::string& input, const char* co
 }
 
 // CGAL has no guard against non-finite points or bad indices: a user must
-// drop those polygons before the chain (timed, as it is part of the job).
-std::size_t drop_unusable_polygons(const std::vector<Point>& pts, std::vector<Polygon>& polys)
-{
-  std::vector<Polygon> kept;
-  kept.reserve(polys.size());
-  for (Polygon& p : polys) {
-    bool ok = p.size() >= 3;
-    for (std::size_t i : p)
-      ok = ok && i < pts.size() && std::isfinite(pts[i].x()) && std::isfinite(pts[i].y()) &&
-           std::isfinite(pts[i].z());
-    if (ok) kept.push_back(std::move(p));
-  }
-  const std::size_t dropped = polys.size() - kept.size();
-  polys.swap(kept);
-  return dropped;
-}
+// drop those polygons before the chain (timed, as it is part of the job):
+// mrepair::bench::drop_unusable_polygons (cgal_chain.h).
 
 // Times each phase into `r` as "<name>_s".
 struct Phases
@@ -299,7 +286,7 @@ mrepair::bench::Measurement run_cgal(const std::string& input, bool scan)
     return out;
   }
   out.result.add("polygons_dropped",
-                 phase("drop_non_finite", [&] { return drop_unusable_polygons(pts, polys); }));
+                 phase("drop_non_finite", [&] { return mrepair::bench::drop_unusable_polygons(pts, polys); }));
   phase("repair_polygon_soup", [&] {
     PMP::repair_polygon_soup(pts, polys);
     return 0;
@@ -326,19 +313,7 @@ mrepair::bench::Measurement run_cgal(const std::string& input, bool scan)
     phase("keep_large_connected_components",
           [&] { return PMP::keep_large_connected_components(m, kMinComponent); });
     out.result.add("holes_filled", phase("triangulate_refine_and_fair_hole", [&] {
-      std::vector<Mesh::Halfedge_index> loops;
-      PMP::extract_boundary_cycles(m, std::back_inserter(loops));
-      std::size_t filled = 0;
-      for (auto h : loops) {
-        std::size_t n = 0;
-        for (auto g : CGAL::halfedges_around_face(h, m)) { (void)g; ++n; }
-        if (n >= kMaxHole) continue;
-        std::vector<Mesh::Face_index> fs;
-        std::vector<Mesh::Vertex_index> vs;
-        filled += std::get<0>(PMP::triangulate_refine_and_fair_hole(m, h, std::back_inserter(fs),
-                                                                     std::back_inserter(vs)));
-      }
-      return filled;
+      return mrepair::bench::fill_small_holes_with_cgal(m, kMaxHole).first;
     }));
     const double mean = phase("mean_edge_length", [&] {
       double sum = 0;

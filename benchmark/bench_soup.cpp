@@ -12,6 +12,7 @@
 // plus CGAL::is_valid_polygon_mesh. CGAL cannot take polygons with invalid
 // indices or non-finite points: they are removed before its timer starts.
 #include "bench.h"
+#include "cgal_chain.h"
 
 #include <mrepair/inspect.h>
 #include <mrepair/io.h>
@@ -115,18 +116,8 @@ mrepair::bench::Measurement run_cgal(const std::string& path)
   std::vector<Polygon> polys;
   load(path, pts, polys);
   before(pts, polys, out.before);
-  {  // CGAL has no guard against these: take them out untimed
-    std::vector<Polygon> kept;
-    kept.reserve(polys.size());
-    for (Polygon& p : polys) {
-      bool ok = p.size() >= 3;
-      for (std::size_t i : p) ok = ok && i < pts.size() && std::isfinite(pts[i].x()) && std::isfinite(pts[i].y()) &&
-                                   std::isfinite(pts[i].z());
-      if (ok) kept.push_back(std::move(p));
-    }
-    out.result.add("polygons_removed_before_timer", polys.size() - kept.size());
-    polys.swap(kept);
-  }
+  // CGAL has no guard against these: take them out untimed
+  out.result.add("polygons_removed_before_timer", mrepair::bench::drop_unusable_polygons(pts, polys));
   const std::size_t faces_in = polys.size();
   Mesh m;
   CGAL::Real_timer t, t1, t2, t3, t4, t5;
