@@ -571,6 +571,44 @@ TYPED_TEST(Close_gaps, automatic_tolerance_leaves_a_narrow_strip_between_holes)
   EXPECT_EQ(border_loops(m), 3u);
 }
 
+// A flattened open tube: 40 points around an ellipse 2 wide and 0.02 thick,
+// 20 rings along y. Each open end's upper and lower sides are 0.02 apart,
+// nearer than the end's edges (0.16): the near pairs of a thin open end
+// (a blade's end cap), which once set the tolerance that zipped the blade's
+// ends. Both sides' faces lie on the same side of the end, so no pair faces
+// the other: no tolerance, nothing moves.
+TYPED_TEST(Close_gaps, automatic_tolerance_ignores_the_thin_open_ends_of_a_flat_tube)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  const std::size_t around = 40, rings = 20;
+  const double pi = 3.14159265358979323846;
+  for (std::size_t j = 0; j <= rings; ++j)
+    for (std::size_t k = 0; k < around; ++k) {
+      const double a = 2 * pi * double(k) / double(around);
+      s.points.emplace_back(std::cos(a), 0.1 * double(j), 0.01 * std::sin(a));
+    }
+  auto id = [&](std::size_t j, std::size_t k) { return j * around + k % around; };
+  for (std::size_t j = 0; j < rings; ++j)
+    for (std::size_t k = 0; k < around; ++k) {
+      s.polygons.push_back({id(j, k), id(j, k + 1), id(j + 1, k + 1)});
+      s.polygons.push_back({id(j, k), id(j + 1, k + 1), id(j + 1, k)});
+    }
+  Mesh m = to_mesh<Mesh>(s);
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  ASSERT_EQ(border_loops(m), 2u);
+  const auto sig = signature(m);
+  const mrepair::Gap_tolerance_estimate e = mrepair::estimate_gap_tolerance(m);
+  EXPECT_GE(e.not_facing, 60u);  // nearly every end vertex has the other side within 0.02
+  EXPECT_LT(e.candidates, 16u);
+  EXPECT_EQ(e.tolerance, 0.);
+  auto r = mrepair::close_gaps(m, mrepair::automatic_gap_tolerance);
+  EXPECT_EQ(r.status, mrepair::Status::ok);
+  EXPECT_EQ(r.operations, 0u);
+  EXPECT_EQ(border_edges(m), 2 * around);
+  EXPECT_EQ(signature(m), sig);
+}
+
 TYPED_TEST(Close_gaps, gaps_wider_than_the_tolerance_stay_open)
 {
   using Mesh = typename TypeParam::Mesh;

@@ -22,6 +22,7 @@ struct Gap_tolerance_estimate
   std::size_t boundary_vertices = 0;
   std::size_t boundary_edges = 0;
   std::size_t candidates = 0;             ///< boundary vertices with another boundary nearer than their longest boundary edge
+  std::size_t not_facing = 0;             ///< near pairs left out: the partner's surface folds back on the vertex's side or its boundary runs the same way
   std::size_t above_knee = 0;             ///< candidates farther than the knee (left open)
   double knee_distance = 0;               ///< the candidate distance the tolerance is derived from
   double largest_candidate_distance = 0;
@@ -34,6 +35,7 @@ struct Gap_tolerance_estimate
     r.add("boundary_vertices", boundary_vertices);
     r.add("boundary_edges", boundary_edges);
     r.add("candidates", candidates);
+    r.add("not_facing", not_facing);
     r.add("above_knee", above_knee);
     r.add("knee_distance", knee_distance);
     r.add("largest_candidate_distance", largest_candidate_distance);
