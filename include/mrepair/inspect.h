@@ -137,6 +137,7 @@ Inspection_report inspect_polygon_soup(const PointRange& points, const PolygonRa
   internal::Surface_analysis analysis(a, t, r);
   analysis.run(nullptr);
   const bool count_si = internal::get_or<bool>(np, internal_np::count_self_intersections, true);
+  internal::keep_for_self_intersections(a);
   internal::count_self_intersections(analysis, count_si, visitor, r);
   internal::finish_status(r, analysis.non_finite_referenced);
   return r;
@@ -190,6 +191,8 @@ Inspection_report inspect(const PolygonMesh& pmesh,
     internal::Surface_analysis analysis(a, t, r);
     analysis.run(&loops);
     non_finite_referenced = analysis.non_finite_referenced;
+    std::vector<std::size_t>().swap(loops);
+    internal::keep_for_self_intersections(a);
     internal::count_self_intersections(analysis, count_si, visitor, r);
   }
   internal::finish_status(r, non_finite_referenced);

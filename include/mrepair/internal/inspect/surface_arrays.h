@@ -56,6 +56,18 @@ struct Surface_arrays
   const double* point(std::size_t v) const { return &xyz[3 * v]; }
 };
 
+// frees what the self-intersection counter does not read (it reads the
+// points, the faces' corners and the corners' edges), before it allocates.
+inline void keep_for_self_intersections(Surface_arrays& a)
+{
+  std::vector<Inspect_index>().swap(a.corner_f);
+  std::vector<Inspect_index>().swap(a.edge_v);
+  std::vector<Inspect_index>().swap(a.edge_corners);
+  std::vector<unsigned char>().swap(a.face_skip);
+  std::vector<unsigned char>().swap(a.finite);
+  a.edge_off.assign(1, 0);  // num_edges() is 0 from here on
+}
+
 // true when a face has the same vertex index twice.
 inline bool has_repeated_index(const Inspect_index* v, std::size_t k)
 {
