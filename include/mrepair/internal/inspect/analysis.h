@@ -95,7 +95,9 @@ public:
     MREPAIR_INSPECT_STEP(face_pass())
     MREPAIR_INSPECT_STEP(duplicate_faces())
     MREPAIR_INSPECT_STEP(edge_pass())
+    std::vector<double>().swap(normal_);  // read by the edge pass only; the peak is in the next step
     MREPAIR_INSPECT_STEP(vertex_accumulation())
+    std::vector<double>().swap(edge_dihedral_);
     MREPAIR_INSPECT_STEP(near_degenerate())
     MREPAIR_INSPECT_STEP(components())
     MREPAIR_INSPECT_STEP(non_manifold_vertices())
