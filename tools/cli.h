@@ -21,6 +21,9 @@
 #include <string>
 #include <unistd.h>
 #include <vector>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 namespace mrepair {
 namespace cli {
@@ -134,6 +137,18 @@ struct Command
   std::string summary;   // one line
   std::function<int(int argc, char** argv)> run;  // argv[0] is the command name
 };
+
+/// hands the free pages of the heap back to the system. mrepair.cpp keeps
+/// freed blocks up to 32 MiB warm and never trims below 1 GiB; after the
+/// input soup is freed (10M small polygon vectors, 560 MB at 10M faces) that
+/// memory would stay resident through the rest of the job, the peak of
+/// which comes later. glibc only; elsewhere nothing to do.
+inline void release_freed_memory()
+{
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
+}
 
 inline std::vector<Command>& registry()
 {

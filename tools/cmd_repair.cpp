@@ -105,8 +105,9 @@ int run_repair(int argc, char** argv)
   options.count_self_intersections = count_si;
   options.count_input_self_intersections = a.has("input-self-intersections");
   options.after_stage = [&](const char* stage, const mrepair::Repair_result& r) {
-    if (quiet) return;
     const std::string s = stage;
+    if (s == "soup_to_manifold") mrepair::cli::release_freed_memory();
+    if (quiet) return;
     if (s == "before") print_inspection("before", r.before, quiet);
     if (s == "close_gaps") {
       const mrepair::Gap_closing_result& g = r.gaps;

@@ -26,8 +26,9 @@
 /// - halfedge: angle of the corner opposite to it in its face (0 on a border halfedge);
 /// - edge: length and dihedral angle = angle between the two face normals, in
 ///   [0, pi] (0 = flat; 0 on border edges and next to a zero-area face);
-/// - face: area, unit normal (zero vector when the area is 0), barycenter,
-///   minimum inner angle;
+/// - face: area, unit normal (zero vector when the area is 0), minimum inner
+///   angle (the barycenter is computed on demand: stored, it was 24 of the
+///   64 bytes per face, and the statistics are the cleaning's memory peak);
 /// - vertex: valence, mean length of the incident edges, maximum dihedral of
 ///   the incident edges;
 /// - global: sum and count of edge lengths (a running sum kept by the local
@@ -59,7 +60,6 @@ struct Face_statistics
 {
   double area = 0;
   std::array<double, 3> normal{{0, 0, 0}};     // unit, or zero when area is 0
-  std::array<double, 3> barycenter{{0, 0, 0}};
   double min_angle = 0;                         // radians
 };
 
@@ -151,7 +151,7 @@ public:
   /// sequential, 0.78-0.83 s parallel), so the gain on an idle machine is unmeasured.
   void set_parallel(bool p) { parallel_ = p; }
 
-  /// computes every statistic: faces (area, normal, barycenter, corner angles,
+  /// computes every statistic: faces (area, normal, corner angles,
   /// min angle), then edges (length, dihedral, which needs both normals), then
   /// vertices. Faces and edges and vertices run in parallel with TBB.
   void compute_all()
@@ -187,7 +187,13 @@ public:
   double dihedral(edge_descriptor e) const { return get(hstats_, halfedge(e, *tm_)).dihedral; }
   double area(face_descriptor f) const { return get(fstats_, f).area; }
   const Vec& normal(face_descriptor f) const { return get(fstats_, f).normal; }
-  const Vec& barycenter(face_descriptor f) const { return get(fstats_, f).barycenter; }
+  /// computed from the current positions (not stored)
+  Vec barycenter(face_descriptor f) const
+  {
+    const halfedge_descriptor h = halfedge(f, *tm_);
+    const Vec a = point(source(h, *tm_)), b = point(target(h, *tm_)), c = point(target(next(h, *tm_), *tm_));
+    return Vec{{(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3}};
+  }
   double min_angle(face_descriptor f) const { return get(fstats_, f).min_angle; }
   std::size_t valence(vertex_descriptor v) const { return get(vstats_, v).valence; }
   double mean_edge_length(vertex_descriptor v) const { return get(vstats_, v).mean_edge_length; }
@@ -337,7 +343,6 @@ public:
     const double nn = internal::norm(n);
     fs.area = 0.5 * nn;
     if (nn > 0 && std::isfinite(nn)) fs.normal = Vec{{n[0] / nn, n[1] / nn, n[2] / nn}};
-    fs.barycenter = Vec{{(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3}};
     // corner angles: at c opposite h0 (a->b), at a opposite h1, at b opposite h2
     // two corners by atan2, the third as pi minus their sum (atan2 dominates the
     // pass); |u x v| is twice the area at every corner, so nn serves all three

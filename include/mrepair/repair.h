@@ -66,10 +66,11 @@ struct Repair_options
   /// scan it took 1.9 s of a 6.8 s job (the soup's pairs are informative only:
   /// the cleaning does not aim at them), so the report costs less than the repair.
   bool count_input_self_intersections = false;
-  /// called after the stages "before" (input inspected), "close_gaps" (when it
-  /// ran), "clean" (profile
-  /// chosen) and "after" (output inspected), with the result so far: lets a
-  /// caller print while the job runs
+  /// called after the stages "before" (input inspected), "soup_to_manifold"
+  /// (the mesh built, the soup's memory freed), "close_gaps" (when it ran),
+  /// "clean" (profile chosen) and "after" (output inspected), with the result
+  /// so far: lets a caller print while the job runs, or hand freed memory back
+  /// to the system
   std::function<void(const char* stage, const Repair_result& so_far)> after_stage;
 };
 
@@ -245,6 +246,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
     }
   }
   report.section("soup_to_manifold").add("seconds", since(t_stage));
+  stage_done("soup_to_manifold");
   if (stop_requested()) return fail("soup_to_manifold", Status::cancelled, "");
 
   // 2. Gap closing: with the tolerance given, or derived from the input on
