@@ -3,9 +3,14 @@
 // (tools/cmd_*.cpp). Usage errors exit 2, bad input 1, success 0.
 #include "cli.h"
 
+#include <tbb/global_control.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <memory>
 
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -28,6 +33,23 @@ void keep_freed_memory_warm()
 #endif
 }
 
+// MREPAIR_THREADS=N caps the threads every parallel stage uses (TBB's
+// max_allowed_parallelism); unset or empty: all the machine has. For
+// measuring what the threads gain, and for sharing a machine.
+std::unique_ptr<tbb::global_control> limit_threads()
+{
+  const char* s = std::getenv("MREPAIR_THREADS");
+  if (s == nullptr || *s == 0) return nullptr;
+  char* end = nullptr;
+  errno = 0;
+  const long n = std::strtol(s, &end, 10);
+  if (errno != 0 || *end != 0 || n < 1 || n > 4096)
+    throw mrepair::cli::Usage_error(std::string("MREPAIR_THREADS must be a whole number from 1 to 4096, not '") +
+                                    s + "'");
+  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                               static_cast<std::size_t>(n));
+}
+
 void print_usage()
 {
   auto commands = mrepair::cli::registry();
@@ -37,13 +59,21 @@ void print_usage()
   for (const auto& c : commands)
     std::cout << "  " << c.name << std::string(c.name.size() < 12 ? 12 - c.name.size() : 1, ' ')
               << c.summary << "\n";
-  std::cout << "\n'mrepair COMMAND --help' describes a command's options.\n";
+  std::cout << "\n'mrepair COMMAND --help' describes a command's options.\n"
+            << "MREPAIR_THREADS=N in the environment caps the threads (default: all).\n";
 }
 } // namespace
 
 int main(int argc, char** argv)
 {
   keep_freed_memory_warm();
+  std::unique_ptr<tbb::global_control> threads;
+  try {
+    threads = limit_threads();
+  } catch (const mrepair::cli::Usage_error& e) {
+    std::cerr << "mrepair: " << e.what() << "\n";
+    return 2;
+  }
   if (argc < 2) {
     print_usage();
     return 2;
