@@ -23,7 +23,6 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -294,8 +293,7 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
   using Handle = internal::Visitor_handle<NamedParameters>;
   namespace SC = internal::clean_pipeline;
   namespace MP = mrepair::parameters;
-  using Clock = std::chrono::steady_clock;
-  const auto t_start = Clock::now();
+  const internal::Stopwatch job_clock;
 
   Handle visitor(np);
   auto vpm = CGAL::parameters::choose_parameter(
@@ -337,7 +335,7 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
     r.message = msg;
     r.vertices_after = internal::vertex_count(pmesh);
     r.faces_after = internal::face_count(pmesh);
-    r.seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
+    r.seconds = job_clock.seconds();
     return r;
   };
 
@@ -379,10 +377,10 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
   auto run_step = [&](std::size_t i, auto&& body) -> bool {
     if (!r.steps[i].enabled) return true;
     internal::Phase_scope<Handle> phase(visitor, clean_step_name(i));
-    const auto t0 = Clock::now();
+    const internal::Stopwatch step_clock;
     SC::Step_outcome o = body();
     Clean_step_stats& s = r.steps[i];
-    s.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    s.seconds += step_clock.seconds();
     s.available = o.available;
     if (!o.available) return true;
     ++s.runs;

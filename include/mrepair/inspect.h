@@ -191,7 +191,7 @@ Inspection_report inspect(const PolygonMesh& pmesh,
     internal::Surface_analysis analysis(a, t, r);
     analysis.run(&loops);
     non_finite_referenced = analysis.non_finite_referenced;
-    std::vector<std::size_t>().swap(loops);
+    internal::free_memory(loops);
     internal::keep_for_self_intersections(a);
     internal::count_self_intersections(analysis, count_si, visitor, r);
   }

@@ -26,7 +26,6 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -182,10 +181,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   const double inspect_spike = std::isnan(spike) ? 100. : spike;  // inspect's default is 100
   // Each stage's wall time goes into its report section ("seconds"): the
   // phase breakdown of the whole job.
-  auto since = [](std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
-  auto t_stage = std::chrono::steady_clock::now();
+  internal::Stopwatch stage_clock;
   auto thresholds = MP::max_hole_vertices(
       hole_n, MP::min_component_faces(comp_n, MP::spike_angle(
                                                   inspect_spike, MP::count_self_intersections(
@@ -193,7 +189,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
                                                                      options.count_input_self_intersections))));
   result.before = inspect_polygon_soup(points, polygons, thresholds);
   result.before.to_report(report.section("before"));
-  report.section("before").add("seconds", since(t_stage));
+  report.section("before").add("seconds", stage_clock.seconds());
   stage_done("before");
   if (stop_requested()) return fail("before", Status::cancelled, "");
 
@@ -205,7 +201,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   for (const auto& poly : polygons) faces_in += poly.size() >= 3 ? poly.size() - 2 : 1;
 
   // 1. A manifold mesh, built directly when the soup already is one.
-  t_stage = std::chrono::steady_clock::now();
+  stage_clock.restart();
   bool finite = true;
   for (const Point& p : points)
     finite = finite && std::isfinite(CGAL::to_double(p.x())) &&
@@ -233,8 +229,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
     if (!succeeded(s.status)) return fail("soup_to_manifold", s.status, s.message);
   }
   // freed, not only emptied: clear() keeps the capacity (36 MB of a 1M-face scan)
-  std::vector<Point>().swap(points);
-  std::vector<Polygon>().swap(polygons);
+  internal::free_memory(points, polygons);
   {
     const Triangulation_result t = triangulate_polygons(out);
     if (t.polygons > 0) t.to_report(report.section("triangulation"));
@@ -245,7 +240,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
       return result;
     }
   }
-  report.section("soup_to_manifold").add("seconds", since(t_stage));
+  report.section("soup_to_manifold").add("seconds", stage_clock.seconds());
   stage_done("soup_to_manifold");
   if (stop_requested()) return fail("soup_to_manifold", Status::cancelled, "");
 
@@ -256,7 +251,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   if (!(gap > 0.) && options.automatic_gap_tolerance)
     automatic = classify_input(out, MP::input_profile(options.profile)).profile == Input_profile::cad;
   if (gap > 0. || automatic) {
-    t_stage = std::chrono::steady_clock::now();
+    stage_clock.restart();
     Gap_closing_result g;
     const std::size_t f0 = internal::face_count(out);
     {
@@ -271,7 +266,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
     if (f1 > f0) added.emplace_back("close_gaps_splits", f1 - f0);
     if (f0 > f1) removed.emplace_back("close_gaps", f0 - f1);
     g.to_report(report.section("close_gaps"));
-    report.section("close_gaps").add("seconds", since(t_stage));
+    report.section("close_gaps").add("seconds", stage_clock.seconds());
     stage_done("close_gaps");
     if (!succeeded(g.status)) return fail("close_gaps", g.status, "");
   }
@@ -312,14 +307,14 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
     fa.add("reconciles", result.faces_reconcile());
   }
 
-  t_stage = std::chrono::steady_clock::now();
+  stage_clock.restart();
   result.after = inspect(
       out, MP::max_hole_vertices(
                hole_n, MP::min_component_faces(
                            comp_n, MP::spike_angle(inspect_spike, MP::count_self_intersections(
                                                                       options.count_self_intersections)))));
   result.after.to_report(report.section("after"));
-  report.section("after").add("seconds", since(t_stage));
+  report.section("after").add("seconds", stage_clock.seconds());
   stage_done("after");
   result.status = c.status;
   return result;

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <numeric>
@@ -197,6 +198,27 @@ public:
 private:
   std::vector<Index> parent_;
 };
+
+/// wall seconds since construction or the last `restart()`: the "seconds"
+/// of the reports.
+class Stopwatch
+{
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+
+public:
+  double seconds() const
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  void restart() { start_ = std::chrono::steady_clock::now(); }
+};
+
+/// empties containers and gives their memory back (`clear()` keeps the capacity).
+template <typename... Containers>
+void free_memory(Containers&... c)
+{
+  (Containers().swap(c), ...);
+}
 
 }  // namespace internal
 }  // namespace mrepair

@@ -142,7 +142,7 @@ Gap_tolerance_estimate estimate_tolerance(const TriangleMesh& tm, const VertexPo
   // the longest boundary edge at v: a seam partner is nearer than that, the
   // rest of a real hole's rim is not.
   std::vector<double> d(nb, std::numeric_limits<double>::infinity());
-  std::vector<char> folded(nb, 0);
+  std::vector<char> not_facing(nb, 0);
   auto near = [&](std::size_t i) {
     const Id v = Id(i);
     const double r = gap_candidate_ratio * longest[v];
@@ -181,7 +181,7 @@ Gap_tolerance_estimate estimate_tolerance(const TriangleMesh& tm, const VertexPo
     }
     if (!(best < r)) return;
     if (!(best_facing <= best * (1 + 1e-9))) {
-      folded[v] = 1;
+      not_facing[v] = 1;
       return;
     }
     d[v] = best;
@@ -194,7 +194,7 @@ Gap_tolerance_estimate estimate_tolerance(const TriangleMesh& tm, const VertexPo
   for (double x : d)
     if (std::isfinite(x)) c.push_back(x);
   e.candidates = c.size();
-  e.not_facing = std::size_t(std::count(folded.begin(), folded.end(), char(1)));
+  e.not_facing = std::size_t(std::count(not_facing.begin(), not_facing.end(), char(1)));
   // a handful of near pairs (three loose triangles, a needle next to a cap)
   // is no seam: leave it to the user
   if (c.size() < gap_min_candidates) return e;

@@ -26,7 +26,6 @@
 #include <cstring>
 #include <limits>
 #include <vector>
-#include <type_traits>
 
 namespace mrepair {
 namespace internal {
@@ -95,9 +94,9 @@ public:
     MREPAIR_INSPECT_STEP(face_pass())
     MREPAIR_INSPECT_STEP(duplicate_faces())
     MREPAIR_INSPECT_STEP(edge_pass())
-    std::vector<double>().swap(normal_);  // read by the edge pass only; the peak is in the next step
+    free_memory(normal_);  // read by the edge pass only; the peak is in the next step
     MREPAIR_INSPECT_STEP(vertex_accumulation())
-    std::vector<double>().swap(edge_dihedral_);
+    free_memory(edge_dihedral_);
     MREPAIR_INSPECT_STEP(near_degenerate())
     MREPAIR_INSPECT_STEP(components())
     MREPAIR_INSPECT_STEP(non_manifold_vertices())
@@ -130,18 +129,8 @@ private:
   // 1M-face repair's peak, which is at that count).
   void release_per_element_arrays()
   {
-    auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
-    release(normal_);
-    release(corner_angle_);
-    release(edge_len_);
-    release(vertex_mean_len_);
-    release(valence_);
-    release(not_interior_);
-    release(boundary_vertex_);
-    release(spiked_);
-    release(referenced_);
-    release(edge_dihedral_);
-    release(non_manifold_vertex_);
+    free_memory(corner_angle_, edge_len_, vertex_mean_len_, valence_, not_interior_, boundary_vertex_,
+                spiked_, referenced_, non_manifold_vertex_);
   }
 
   // ---- vertices ---------------------------------------------------------------

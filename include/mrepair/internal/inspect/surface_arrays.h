@@ -3,6 +3,7 @@
 #define MREPAIR_INTERNAL_INSPECT_SURFACE_ARRAYS_H
 
 #include <mrepair/internal/inspect/parallel.h>
+#include <mrepair/internal/utility.h>
 
 #include <CGAL/number_utils.h>
 
@@ -60,11 +61,7 @@ struct Surface_arrays
 // points, the faces' corners and the corners' edges), before it allocates.
 inline void keep_for_self_intersections(Surface_arrays& a)
 {
-  std::vector<Inspect_index>().swap(a.corner_f);
-  std::vector<Inspect_index>().swap(a.edge_v);
-  std::vector<Inspect_index>().swap(a.edge_corners);
-  std::vector<unsigned char>().swap(a.face_skip);
-  std::vector<unsigned char>().swap(a.finite);
+  free_memory(a.corner_f, a.edge_v, a.edge_corners, a.face_skip, a.finite);
   a.edge_off.assign(1, 0);  // num_edges() is 0 from here on
 }
 
