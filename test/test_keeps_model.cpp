@@ -15,7 +15,9 @@
 #include <mrepair/remove_small_components.h>
 #include <mrepair/stitch_soup.h>
 
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/centroid.h>
 #include <CGAL/boost/graph/helpers.h>
 
 #include <algorithm>
@@ -394,6 +396,58 @@ TYPED_TEST(Keeps_model, solid_with_small_holes_comes_out_closed)
   EXPECT_EQ(r.profile.profile, Input_profile::cad);
   EXPECT_TRUE(CGAL::is_closed(m));
   EXPECT_GE(face_count(m), s.polygons.size());
+}
+
+// Found on real meshes (CGAL's boeing.off, model-repair's teapot.obj, CGAL's
+// pinched.off): the cap of a hole passed through another part of the model
+// and added self-intersections. A cap through a clean face is taken back and
+// the hole stays open, counted with its reason.
+TYPED_TEST(Keeps_model, cap_through_a_clean_surface_is_taken_back)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup sphere = icosphere(2);
+  const Polygon hole = sphere.polygons[10];
+  sphere.polygons.erase(sphere.polygons.begin() + 10);
+  // a small closed cube through the middle of the missing face, touching
+  // nothing else: the face's cap would cut through it
+  Point c = CGAL::centroid(sphere.points[hole[0]], sphere.points[hole[1]], sphere.points[hole[2]]);
+  const double half = 0.02;
+  Soup s = merged(sphere, translated(cube(2 * half), c.x() - half, c.y() - half, c.z() - half));
+  Mesh m = to_mesh<Mesh>(s);
+  ASSERT_FALSE(CGAL::Polygon_mesh_processing::does_self_intersect(m));
+  mrepair::Scan_cleaning_result r = clean_and_check(m);
+  EXPECT_EQ(r.holes.fills_rejected_intersecting, 1u);
+  ASSERT_EQ(r.holes.open_holes.size(), 1u);
+  EXPECT_EQ(r.holes.open_holes[0].reason, "patch_intersects_surface");
+  EXPECT_EQ(r.holes.open_holes[0].vertices, 3u);
+  EXPECT_FALSE(CGAL::Polygon_mesh_processing::does_self_intersect(m));
+  EXPECT_EQ(face_count(m), s.polygons.size());  // nothing added, nothing lost
+}
+
+// admesh's conveyor: a missing face where two parts of a CAD assembly
+// already interpenetrate. Its cap only continues the crossing the faces
+// around it have, so it is kept and the model comes out closed.
+TYPED_TEST(Keeps_model, cap_continuing_an_existing_crossing_is_kept)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup a = icosphere(2), b = translated(icosphere(2), 1.0, 0.05, 0.02);
+  const Point cb(1.0, 0.05, 0.02);
+  // a face of the first sphere that straddles the second one's surface
+  std::size_t straddling = a.polygons.size();
+  for (std::size_t i = 0; i < a.polygons.size() && straddling == a.polygons.size(); ++i) {
+    int inside = 0;
+    for (std::size_t v : a.polygons[i]) inside += CGAL::squared_distance(a.points[v], cb) < 1.0;
+    if (inside == 1 || inside == 2) straddling = i;
+  }
+  ASSERT_LT(straddling, a.polygons.size());
+  Soup holed = a;
+  holed.polygons.erase(holed.polygons.begin() + std::ptrdiff_t(straddling));
+  Mesh m = to_mesh<Mesh>(merged(holed, b));
+  mrepair::Scan_cleaning_result r = clean_and_check(m, Input_profile::cad);
+  EXPECT_EQ(r.holes.fills_rejected_intersecting, 0u);
+  EXPECT_TRUE(r.holes.open_holes.empty());
+  EXPECT_TRUE(CGAL::is_closed(m));
+  EXPECT_EQ(face_count(m), a.polygons.size() + b.polygons.size());
 }
 
 TYPED_TEST(Keeps_model, stray_facet_next_to_a_solid_is_removed_and_counted)

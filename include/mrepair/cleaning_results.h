@@ -238,7 +238,7 @@ struct Boundary_cleaning_result
 struct Open_hole
 {
   std::size_t vertices = 0;  ///< boundary loop size when it was given up
-  std::string reason;        ///< "triangulation_failed", "grew_too_large", "non_finite"
+  std::string reason;        ///< "triangulation_failed", "patch_intersects_surface", "grew_too_large", "component_too_small", "non_finite"
 };
 
 /// \ingroup mrepair_clean
@@ -250,7 +250,10 @@ struct Hole_filling_result
   std::size_t holes_filled = 0;     ///< holes closed (after enlargement or not)
   std::size_t holes_too_large = 0;  ///< loops at or above the limit, left open on purpose
   std::size_t sheet_borders = 0;    ///< small loops left open because they border a sheet (cap too large for its component)
-  std::size_t aborted_fills = 0;    ///< triangulations that failed (complex edge, degenerate loop)
+  std::size_t aborted_fills = 0;    ///< triangulations that failed (complex edge, degenerate loop) or were taken back
+  /// patches taken back because they met the rest of the surface or
+  /// themselves (a cap through the model would add self-intersections)
+  std::size_t fills_rejected_intersecting = 0;
   std::size_t enlargements = 0;     ///< 1-ring enlargements of aborted holes
   std::size_t enlargement_faces_removed = 0;
   std::size_t faces_added = 0;      ///< net faces of the patches (after refinement)
@@ -267,6 +270,7 @@ struct Hole_filling_result
     f("holes_too_large", &R::holes_too_large, totals::last{});
     f("sheet_borders", &R::sheet_borders, totals::last{});
     f("aborted_fills", &R::aborted_fills, totals::sum{});
+    f("fills_rejected_intersecting", &R::fills_rejected_intersecting, totals::sum{});
     f("enlargements", &R::enlargements, totals::sum{});
     f("enlargement_faces_removed", &R::enlargement_faces_removed, totals::sum{});
     f("faces_added", &R::faces_added, totals::sum{});
@@ -277,15 +281,17 @@ struct Hole_filling_result
   {
     internal::report_fields(*this, r);
     r.add("holes_left_open", open_holes.size());
-    std::size_t failed = 0, grew = 0, nonfinite = 0;
+    std::size_t failed = 0, crossing = 0, grew = 0, nonfinite = 0;
     for (const Open_hole& h : open_holes) {
       if (h.reason == "triangulation_failed") ++failed;
+      else if (h.reason == "patch_intersects_surface") ++crossing;
       else if (h.reason == "grew_too_large" || h.reason == "component_too_small") ++grew;
       else ++nonfinite;
     }
     if (!open_holes.empty()) {
       Report& s = r.section("left_open");
       s.add("triangulation_failed", failed);
+      s.add("patch_intersects_surface", crossing);
       s.add("grew_too_large", grew);
       s.add("non_finite", nonfinite);
     }

@@ -340,6 +340,14 @@ public:
     return to_remove.size();
   }
 
+  /// takes back the faces of a patch this object inserted into one border
+  /// loop (the whole patch, nothing else): the loop is a border again.
+  void remove_patch(const std::vector<face_descriptor>& patch)
+  {
+    for (face_descriptor f : patch) CGAL::Euler::remove_face(halfedge(f, pm_), pm_);
+    counts.faces_removed += patch.size();
+  }
+
   /// removes whole connected components given by all their faces: nothing
   /// around them survives, so no pinch can arise.
   std::size_t remove_components(const std::vector<face_descriptor>& component_faces)

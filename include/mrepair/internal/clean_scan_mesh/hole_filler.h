@@ -7,6 +7,7 @@
 
 #include <mrepair/cleaning_results.h>
 #include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
+#include <mrepair/internal/clean_scan_mesh/patch_guard.h>
 #include <mrepair/internal/clean_scan_mesh/safety.h>
 #include <mrepair/internal/local_operations.h>
 #include <mrepair/status.h>
@@ -50,6 +51,10 @@ class Small_hole_filler
   // scratch of the bounded component searches, all zero between searches
   typename boost::property_map<PM, CGAL::dynamic_face_property_t<char>>::type visited_;
   std::vector<face_descriptor> reached_;
+  // fills that would pass through the surface are taken back (patch_guard.h)
+  Patch_intersection_guard<PM, VPM> guard_;
+  bool last_fill_intersected_ = false;
+  std::set<halfedge_descriptor> intersected_;  // failed loops whose last patch was taken back
 
 public:
   Hole_filling_result result;
@@ -58,7 +63,8 @@ public:
                     bool fair, std::size_t delaunay_above, double area_share)
     : ops_(ops), pm_(ops.mesh()), vpm_(ops.vertex_point_map()), max_vertices_(max_vertices),
       density_(density), refine_(refine), fair_(fair), delaunay_above_(delaunay_above),
-      area_share_(area_share), visited_(get(CGAL::dynamic_face_property_t<char>(), pm_))
+      area_share_(area_share), visited_(get(CGAL::dynamic_face_property_t<char>(), pm_)),
+      guard_(pm_, vpm_)
   {
     for (face_descriptor f : faces(pm_)) put(visited_, f, char(0));
   }
@@ -144,8 +150,10 @@ public:
   // Inserts the patch of the loop of `h` through the local operations:
   // Liepa's triangulation, then refinement and fairing of the new faces,
   // with the statistics updated once for the whole patch.
-  bool fill(halfedge_descriptor h, std::size_t n)
+  // `index`: the loop's place in the list the guard was prepared with.
+  bool fill(halfedge_descriptor h, std::size_t n, std::size_t index)
   {
+    last_fill_intersected_ = false;
     double lsum = 0.;
     for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_)) {
       if (!is_finite_point(vpm_, target(g, pm_))) return false;
@@ -167,6 +175,14 @@ public:
       // which fail on NaN: skip it next to a non-finite vertex.
       if (fair_ && !added.empty() && two_rings_are_finite(added))
         CGAL::Polygon_mesh_processing::fair(pm_, added, CGAL::parameters::vertex_point_map(vpm_));
+      if (guard_.patch_intersects(index, patch)) {
+        patch_ops.remove_patch(patch);
+        added.clear();
+        ++result.fills_rejected_intersecting;
+        last_fill_intersected_ = true;
+        return false;
+      }
+      guard_.accept(patch);
       result.faces_added += patch.size();
       result.vertices_added += added.size();
       return true;
@@ -410,6 +426,21 @@ public:
     loops_of(hs, new_border);
   }
 
+  // the guard reads the faces near the loops that may be filled
+  void prepare_guard(const std::vector<halfedge_descriptor>& loops)
+  {
+    guard_.prepare(
+        loops, [&](std::size_t i) { return loop_size(loops[i]) < max_vertices_; },
+        fair_ ? 0.5 : 0.);  // fairing may bulge out of the loop's box; the rest stays inside
+  }
+
+  void fill_failed(halfedge_descriptor h, std::vector<halfedge_descriptor>& failed)
+  {
+    ++result.aborted_fills;
+    failed.push_back(h);
+    if (last_fill_intersected_) intersected_.insert(h);
+  }
+
   template <typename Visitor>
   Status run(std::size_t max_enlargements, Visitor& visitor)
   {
@@ -417,9 +448,11 @@ public:
     for (halfedge_descriptor h : halfedges(pm_))
       if (is_border(h, pm_)) all.push_back(h);
     loops_of(all, loops);
+    prepare_guard(loops);
     std::vector<halfedge_descriptor> failed, next;
     std::size_t done = 0;
-    for (halfedge_descriptor h : loops) {
+    for (std::size_t index = 0; index < loops.size(); ++index) {
+      const halfedge_descriptor h = loops[index];
       if (visitor.stop_requested()) return Status::cancelled;
       std::size_t n = loop_size(h);
       if (n >= max_vertices_) { ++result.holes_too_large; continue; }
@@ -430,8 +463,8 @@ public:
       }
       if (is_sheet_border(h)) { ++result.sheet_borders; continue; }
       ++result.holes_found;
-      if (fill(h, n)) ++result.holes_filled;
-      else { ++result.aborted_fills; failed.push_back(h); }
+      if (fill(h, n, index)) ++result.holes_filled;
+      else fill_failed(h, failed);
       if ((++done & 63) == 0) visitor.progress(double(done) / double(loops.size()));
     }
     // 3.5: enlarge the aborted holes by their 1-ring and retry, a bounded
@@ -440,7 +473,8 @@ public:
     for (std::size_t round = 0; !failed.empty(); ++round) {
       if (round == max_enlargements) {
         for (halfedge_descriptor h : failed)
-          result.open_holes.push_back({loop_size(h), "triangulation_failed"});
+          result.open_holes.push_back(
+              {loop_size(h), intersected_.count(h) ? "patch_intersects_surface" : "triangulation_failed"});
         break;
       }
       if (visitor.stop_requested()) return Status::cancelled;
@@ -468,7 +502,10 @@ public:
       loops.clear();
       enlarge(failed, loops);
       failed.clear();
-      for (halfedge_descriptor h : loops) {
+      intersected_.clear();
+      prepare_guard(loops);
+      for (std::size_t index = 0; index < loops.size(); ++index) {
+        const halfedge_descriptor h = loops[index];
         std::size_t n = loop_size(h);
         if (n >= max_vertices_ || is_sheet_border(h)) {
           result.open_holes.push_back({n, "grew_too_large"});
@@ -478,8 +515,8 @@ public:
           result.open_holes.push_back({n, "non_finite"});
           continue;
         }
-        if (fill(h, n)) ++result.holes_filled;
-        else { ++result.aborted_fills; failed.push_back(h); }
+        if (fill(h, n, index)) ++result.holes_filled;
+        else fill_failed(h, failed);
       }
     }
     return result.open_holes.empty() ? Status::ok : Status::partial;

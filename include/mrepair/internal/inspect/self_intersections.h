@@ -4,6 +4,7 @@
 
 #include <mrepair/internal/inspect/parallel.h>
 #include <mrepair/internal/inspect/surface_arrays.h>
+#include <mrepair/internal/triangle_intersection.h>
 
 #include <CGAL/Bbox_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -19,12 +20,7 @@ namespace internal {
 
 // Counts pairs of distinct triangles that intersect other than through what
 // they share, with the semantics of CGAL 5.5's `PMP::self_intersections`
-// (`do_faces_intersect` in <CGAL/Polygon_mesh_processing/self_intersections.h>):
-// - sharing an edge: they intersect when the two opposite vertices are
-//   coplanar with the edge and on the same side of it (overlap);
-// - sharing a vertex only: when the segment opposite the shared vertex in one
-//   triangle meets the other triangle (either way round);
-// - sharing nothing: when the triangles meet (exact predicate).
+// (the pair test in internal/triangle_intersection.h).
 // Only `eligible` faces take part (triangles with finite, non-collinear corners:
 // CGAL reports a degenerate face only as the pair (f, f)).
 //
@@ -54,39 +50,19 @@ public:
     const Inspect_index* gv = &a_.corner_v[a_.face_off[g]];
     const Inspect_index* fe = &a_.corner_e[a_.face_off[f]];
     const Inspect_index* ge = &a_.corner_e[a_.face_off[g]];
+    // a shared edge is known by its index (two faces on the same two
+    // vertices without a common edge are not adjacent)
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < 3; ++l)
-        if (fe[k] == ge[l] && fe[k] != inspect_npos) {
-          const Point u = point(fv[k]), w = point(fv[(k + 1) % 3]), c = point(fv[(k + 2) % 3]),
-                      d = point(gv[(l + 2) % 3]);
-          return CGAL::coplanar(u, w, c, d) && CGAL::coplanar_orientation(u, w, c, d) == CGAL::POSITIVE;
-        }
+        if (fe[k] == ge[l] && fe[k] != inspect_npos)
+          return overlap_across_shared_edge(point(fv[k]), point(fv[(k + 1) % 3]),
+                                            point(fv[(k + 2) % 3]), point(gv[(l + 2) % 3]));
+    const Point fp[3] = {point(fv[0]), point(fv[1]), point(fv[2])};
+    const Point gp[3] = {point(gv[0]), point(gv[1]), point(gv[2])};
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
-        if (fv[i] == gv[j]) {
-          // quick exits with the exact orientation predicate: an opposite
-          // segment strictly on one side of the other triangle's plane misses it
-          const Point f0 = point(fv[0]), f1 = point(fv[1]), f2 = point(fv[2]);
-          const Point g0 = point(gv[0]), g1 = point(gv[1]), g2 = point(gv[2]);
-          const Point& gd = j == 0 ? g1 : g0;
-          const Point& ge = j == 2 ? g1 : g2;
-          const Point& fd = i == 0 ? f1 : f0;
-          const Point& fe = i == 2 ? f1 : f2;
-          const CGAL::Orientation o1 = CGAL::orientation(f0, f1, f2, gd);
-          const bool g_misses_f = o1 != CGAL::COPLANAR && o1 == CGAL::orientation(f0, f1, f2, ge);
-          if (g_misses_f) {
-            const CGAL::Orientation o2 = CGAL::orientation(g0, g1, g2, fd);
-            if (o2 != CGAL::COPLANAR && o2 == CGAL::orientation(g0, g1, g2, fe)) return false;
-          }
-          const K::Triangle_3 tf(point(fv[0]), point(fv[1]), point(fv[2]));
-          const K::Triangle_3 tg(point(gv[0]), point(gv[1]), point(gv[2]));
-          const K::Segment_3 sf(point(fv[(i + 1) % 3]), point(fv[(i + 2) % 3]));
-          const K::Segment_3 sg(point(gv[(j + 1) % 3]), point(gv[(j + 2) % 3]));
-          return CGAL::do_intersect(tf, sg) || CGAL::do_intersect(tg, sf);
-        }
-    const K::Triangle_3 tf(point(fv[0]), point(fv[1]), point(fv[2]));
-    const K::Triangle_3 tg(point(gv[0]), point(gv[1]), point(gv[2]));
-    return CGAL::do_intersect(tf, tg);
+        if (fv[i] == gv[j]) return intersect_beside_shared_vertex(fp, i, gp, j);
+    return disjoint_triangles_intersect(fp, gp);
   }
 
   std::size_t count(const std::vector<unsigned char>& eligible) const

@@ -1,0 +1,314 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// The hole filler's check that a patch touches the surface only along its
+// loop: a cap that passes through the rest of the model (the bottom of a
+// teapot through its body, a slit's fill over faces that already overlap)
+// would add the self-intersections the repair is meant to remove, so such a
+// fill is taken back like a failed triangulation.
+//
+// A patch that only continues a crossing the surface already had
+// (overlapping parts of a CAD assembly, a missing face where two parts
+// interpenetrate: each stretch of faces it meets already crosses the model)
+// is kept: taking it back would leave a hole and remove no intersection.
+//
+// One pass over the mesh per round of fills collects, for each loop to be
+// filled, the faces whose box meets the loop's box; a patch is tested against
+// those, against the patches accepted since, and against itself. A patch that
+// leaves its loop's box (fairing can bulge) is tested against every face.
+#ifndef MREPAIR_INTERNAL_CLEAN_SCAN_MESH_PATCH_GUARD_H
+#define MREPAIR_INTERNAL_CLEAN_SCAN_MESH_PATCH_GUARD_H
+
+#include <mrepair/internal/triangle_intersection.h>
+#include <mrepair/internal/utility.h>
+
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <map>
+#include <set>
+#include <vector>
+
+namespace mrepair {
+namespace internal {
+namespace clean_pipeline {
+
+template <typename PM, typename VPM>
+class Patch_intersection_guard
+{
+  using GT = boost::graph_traits<PM>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+
+  struct Box
+  {
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    void add(const Vec3& p)
+    {
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], p[d]);
+        hi[d] = std::max(hi[d], p[d]);
+      }
+    }
+    void add(const Box& b)
+    {
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], b.lo[d]);
+        hi[d] = std::max(hi[d], b.hi[d]);
+      }
+    }
+    bool empty() const { return !(lo[0] <= hi[0]); }
+    bool meets(const Box& b) const
+    {
+      for (int d = 0; d < 3; ++d)
+        if (b.hi[d] < lo[d] || hi[d] < b.lo[d]) return false;
+      return true;
+    }
+    bool contains(const Box& b) const
+    {
+      for (int d = 0; d < 3; ++d)
+        if (b.lo[d] < lo[d] || hi[d] < b.hi[d]) return false;
+      return true;
+    }
+    double extent() const
+    {
+      return std::max(hi[0] - lo[0], std::max(hi[1] - lo[1], hi[2] - lo[2]));
+    }
+  };
+
+  // a face read once: its vertices (the keys of what two faces share), its
+  // corners as exact-predicate points, its box; `finite` false skips it
+  struct Tri
+  {
+    vertex_descriptor v[3];
+    Epick_point p[3];
+    Box box;
+    bool finite = true;
+  };
+
+  PM& pm_;
+  VPM vpm_;
+  std::vector<Box> loop_boxes_;                      // per prepared loop (empty: not guarded)
+  std::vector<std::vector<face_descriptor>> near_;   // faces meeting each loop's box
+  std::vector<std::pair<Box, std::vector<face_descriptor>>> accepted_;
+
+  Box face_box(face_descriptor f) const
+  {
+    Box b;
+    for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_))
+      b.add(point(vpm_, v));
+    return b;
+  }
+
+  Tri read(face_descriptor f) const
+  {
+    Tri t;
+    int k = 0;
+    for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_)) {
+      if (k == 3) { t.finite = false; break; }  // not a triangle: never tested
+      const Vec3 q = point(vpm_, v);
+      t.finite = t.finite && is_finite(q);
+      t.v[k] = v;
+      t.p[k] = Epick_point(q[0], q[1], q[2]);
+      t.box.add(q);
+      ++k;
+    }
+    if (k != 3) t.finite = false;
+    return t;
+  }
+
+  static bool meet(const Tri& a, const Tri& b)
+  {
+    return a.finite && b.finite && a.box.meets(b.box) && triangles_intersect(a.v, a.p, b.v, b.p);
+  }
+
+public:
+  /// faces read in the pass of `prepare` and triangle pairs tested, for the report
+  std::size_t pairs_tested = 0;
+
+  Patch_intersection_guard(PM& pm, VPM vpm) : pm_(pm), vpm_(vpm) {}
+
+  /// collects the faces near each loop of `loops` whose `guarded(i)` holds
+  /// (the loops that will be filled), with boxes grown by `margin` times
+  /// their extent. Forgets the patches accepted before.
+  template <typename Guarded>
+  void prepare(const std::vector<halfedge_descriptor>& loops, const Guarded& guarded, double margin)
+  {
+    accepted_.clear();
+    loop_boxes_.assign(loops.size(), Box());
+    near_.assign(loops.size(), {});
+    std::vector<double> extents;
+    for (std::size_t i = 0; i < loops.size(); ++i) {
+      if (!guarded(i)) continue;
+      Box b;
+      for (halfedge_descriptor g : CGAL::halfedges_around_face(loops[i], pm_))
+        b.add(point(vpm_, target(g, pm_)));
+      if (b.empty()) continue;
+      const double grow = margin * b.extent() + 1e-12 * (1. + b.extent());
+      for (int d = 0; d < 3; ++d) { b.lo[d] -= grow; b.hi[d] += grow; }
+      loop_boxes_[i] = b;
+      extents.push_back(b.extent());
+    }
+    if (extents.empty()) return;
+    // a coarse grid over the loop boxes, cells of their median extent; a box
+    // spanning too many cells is matched against every face instead
+    std::nth_element(extents.begin(), extents.begin() + extents.size() / 2, extents.end());
+    const double cell = std::max(extents[extents.size() / 2], 1e-300);
+    auto cell_of = [cell](double x) { return std::int64_t(std::floor(x / cell)); };
+    auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+      return std::uint64_t(x) * 73856093u ^ std::uint64_t(y) * 19349663u ^ std::uint64_t(z) * 83492791u;
+    };
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
+    std::vector<std::uint32_t> big;
+    for (std::size_t i = 0; i < loops.size(); ++i) {
+      const Box& b = loop_boxes_[i];
+      if (b.empty()) continue;
+      std::int64_t lo[3], hi[3];
+      double cells = 1;
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = cell_of(b.lo[d]);
+        hi[d] = cell_of(b.hi[d]);
+        cells *= double(hi[d] - lo[d] + 1);
+      }
+      if (!(cells <= 512)) { big.push_back(std::uint32_t(i)); continue; }
+      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+        for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+          for (std::int64_t z = lo[2]; z <= hi[2]; ++z) grid[key(x, y, z)].push_back(std::uint32_t(i));
+    }
+    std::vector<std::uint32_t> seen;
+    for (face_descriptor f : faces(pm_)) {
+      const Box fb = face_box(f);
+      if (fb.empty() || !std::isfinite(fb.lo[0] + fb.hi[0] + fb.lo[1] + fb.hi[1] + fb.lo[2] + fb.hi[2]))
+        continue;
+      for (std::uint32_t i : big)
+        if (loop_boxes_[i].meets(fb)) near_[i].push_back(f);
+      if (grid.empty()) continue;
+      std::int64_t lo[3], hi[3];
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = cell_of(fb.lo[d]);
+        hi[d] = cell_of(fb.hi[d]);
+      }
+      seen.clear();
+      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+        for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+          for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+            auto it = grid.find(key(x, y, z));
+            if (it == grid.end()) continue;
+            for (std::uint32_t i : it->second)
+              if (loop_boxes_[i].meets(fb) &&
+                  std::find(seen.begin(), seen.end(), i) == seen.end()) {
+                seen.push_back(i);
+                near_[i].push_back(f);
+              }
+          }
+    }
+  }
+
+  /// whether the faces of `patch`, filling prepared loop `i`, meet the
+  /// rest of the surface or each other other than along what they share.
+  bool patch_intersects(std::size_t i, const std::vector<face_descriptor>& patch)
+  {
+    std::vector<Tri> tris;
+    tris.reserve(patch.size());
+    Box pb;
+    for (face_descriptor f : patch) {
+      tris.push_back(read(f));
+      pb.add(tris.back().box);
+    }
+    // the patch against itself: faces sorted by their lowest x, swept
+    std::vector<std::size_t> order(tris.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return tris[a].box.lo[0] < tris[b].box.lo[0]; });
+    for (std::size_t a = 0; a < order.size(); ++a)
+      for (std::size_t b = a + 1; b < order.size(); ++b) {
+        if (tris[order[b]].box.lo[0] > tris[order[a]].box.hi[0]) break;
+        ++pairs_tested;
+        if (meet(tris[order[a]], tris[order[b]])) return true;
+      }
+    const std::set<face_descriptor> own(patch.begin(), patch.end());
+    std::vector<face_descriptor> candidates;
+    const bool inside = i < loop_boxes_.size() && !loop_boxes_[i].empty() &&
+                        loop_boxes_[i].contains(pb);
+    if (inside) {
+      candidates = near_[i];
+      for (const auto& a : accepted_)
+        if (a.first.meets(pb)) candidates.insert(candidates.end(), a.second.begin(), a.second.end());
+    } else {
+      for (face_descriptor g : faces(pm_))
+        if (!own.count(g)) candidates.push_back(g);
+    }
+    // the faces the patch meets
+    std::vector<face_descriptor> met;
+    std::vector<Tri> met_tris;
+    for (face_descriptor g : candidates) {
+      if (own.count(g) || !pb.meets(face_box(g))) continue;
+      const Tri t = read(g);
+      for (const Tri& p : tris) {
+        ++pairs_tested;
+        if (meet(p, t)) {
+          met.push_back(g);
+          met_tris.push_back(t);
+          break;
+        }
+      }
+    }
+    if (met.empty()) return false;
+    // A stretch of surface that already crosses the model (overlapping parts
+    // of a CAD assembly, a part through another) is where the missing faces
+    // crossed it too: a patch that only continues such a crossing is kept.
+    // The faces the patch meets are grouped by shared edges; every group
+    // must hold a face that crosses the surface outside the patch, else the
+    // patch cuts through a clean stretch and makes a new crossing.
+    std::map<face_descriptor, std::size_t> index_of;
+    for (std::size_t k = 0; k < met.size(); ++k) index_of.emplace(met[k], k);
+    Union_find<std::size_t> groups(met.size());
+    for (std::size_t k = 0; k < met.size(); ++k)
+      for (halfedge_descriptor g : CGAL::halfedges_around_face(halfedge(met[k], pm_), pm_)) {
+        const halfedge_descriptor o = opposite(g, pm_);
+        if (is_border(o, pm_)) continue;
+        const auto it = index_of.find(face(o, pm_));
+        if (it != index_of.end()) groups.unite(k, it->second);
+      }
+    std::vector<char> group_crosses(met.size(), 0);
+    for (std::size_t k = 0; k < met.size(); ++k) {
+      const std::size_t root = groups.find(k);
+      if (!group_crosses[root] && crosses_surface(met_tris[k], met[k], candidates, own))
+        group_crosses[root] = 1;
+    }
+    for (std::size_t k = 0; k < met.size(); ++k)
+      if (!group_crosses[groups.find(k)]) return true;
+    return false;
+  }
+
+  // whether `t` (face `g`) meets a face of `candidates` outside the patch
+  bool crosses_surface(const Tri& t, face_descriptor g, const std::vector<face_descriptor>& candidates,
+                       const std::set<face_descriptor>& own)
+  {
+    for (face_descriptor h : candidates) {
+      if (h == g || own.count(h) || !t.box.meets(face_box(h))) continue;
+      ++pairs_tested;
+      if (meet(t, read(h))) return true;
+    }
+    return false;
+  }
+
+  /// records a patch kept in the mesh, so that later patches are tested against it.
+  void accept(const std::vector<face_descriptor>& patch)
+  {
+    Box b;
+    for (face_descriptor f : patch) b.add(face_box(f));
+    accepted_.emplace_back(b, patch);
+  }
+};
+
+}  // namespace clean_pipeline
+}  // namespace internal
+}  // namespace mrepair
+
+#endif  // MREPAIR_INTERNAL_CLEAN_SCAN_MESH_PATCH_GUARD_H
