@@ -9,6 +9,7 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/boost/graph/IO/OFF.h>
 
 #include <fstream>
@@ -247,6 +248,35 @@ TYPED_TEST(Remesh, plane_keeps_outline)
   EXPECT_EQ(square_corners, 4);
   for (auto v : vertices(m)) EXPECT_EQ(pt(m, v).z(), 0.0);
   EXPECT_GT(face_count(m), 200u * 2);  // 200 input faces, L halved-ish
+}
+
+// Found through the hole filler: one coarse flat patch (a square of 32
+// border edges, two triangles across it) remeshed to a quarter of its border
+// edges. The relaxation moves every vertex at once; undoing a move that
+// folded a face could fold a neighbour that was checked against the undone
+// position, and the output crossed itself after one iteration.
+TYPED_TEST(Remesh, dense_flat_patch_does_not_fold)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  for (int i = 0; i < 8; ++i) s.points.emplace_back(0.5 * i, 0, 0);
+  for (int i = 0; i < 8; ++i) s.points.emplace_back(4, 0.5 * i, 0);
+  for (int i = 0; i < 8; ++i) s.points.emplace_back(4 - 0.5 * i, 4, 0);
+  for (int i = 0; i < 8; ++i) s.points.emplace_back(0, 4 - 0.5 * i, 0);
+  std::vector<CGAL::Triple<int, int, int>> triangles;
+  CGAL::Polygon_mesh_processing::triangulate_hole_polyline(s.points, std::back_inserter(triangles));
+  ASSERT_EQ(triangles.size(), 30u);
+  for (const auto& t : triangles)
+    s.polygons.push_back({std::size_t(t.first), std::size_t(t.second), std::size_t(t.third)});
+  for (bool protect : {false, true}) {
+    Mesh m = to_mesh<Mesh>(s);
+    auto r = mrepair::isotropic_remesh(
+        m, 0.125, CGAL::parameters::protect_constraints(protect).number_of_iterations(1));
+    ASSERT_EQ(r.status, mrepair::Status::ok) << r.message;
+    expect_valid(m);
+    EXPECT_GT(face_count(m), 2000u);
+    EXPECT_FALSE(CGAL::Polygon_mesh_processing::does_self_intersect(m)) << "protect " << protect;
+  }
 }
 
 // A sphere reaches the requested edge length within 10% on average.

@@ -24,6 +24,7 @@
 #include <CGAL/boost/graph/iterator.h>
 
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -82,7 +83,8 @@ class Patch_intersection_guard
   };
 
   // a face read once: its vertices (the keys of what two faces share), its
-  // corners as exact-predicate points, its box; `finite` false skips it
+  // corners as exact-predicate points, its box; `finite` false (a non-finite
+  // or collinear corner, not a triangle) skips it
   struct Tri
   {
     vertex_descriptor v[3];
@@ -119,7 +121,42 @@ class Patch_intersection_guard
       ++k;
     }
     if (k != 3) t.finite = false;
+    // like the inspection, a degenerate triangle takes no part in pairs (the
+    // exact predicates need a proper triangle; the validity step removes it)
+    if (t.finite && CGAL::collinear(t.p[0], t.p[1], t.p[2])) t.finite = false;
     return t;
+  }
+
+  // the cells of size `cell` a box spans, and their hashed keys
+  struct Cells
+  {
+    std::int64_t lo[3], hi[3];
+    double count = 1;
+    template <typename F>
+    void for_each(const F& f) const
+    {
+      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+        for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+          for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+            f(std::uint64_t(x) * 73856093u ^ std::uint64_t(y) * 19349663u ^ std::uint64_t(z) * 83492791u);
+    }
+  };
+  static Cells cells_of(const Box& b, double cell)
+  {
+    Cells c;
+    for (int d = 0; d < 3; ++d) {
+      const double lo = std::floor(b.lo[d] / cell), hi = std::floor(b.hi[d] / cell);
+      if (!(std::abs(lo) < 1e18 && std::abs(hi) < 1e18)) {  // beyond the integers: no cells
+        c.lo[0] = c.lo[1] = c.lo[2] = 0;
+        c.hi[0] = c.hi[1] = c.hi[2] = -1;
+        c.count = HUGE_VAL;
+        return c;
+      }
+      c.lo[d] = std::int64_t(lo);
+      c.hi[d] = std::int64_t(hi);
+      c.count *= hi - lo + 1;
+    }
+    return c;
   }
 
   static bool meet(const Tri& a, const Tri& b)
@@ -159,54 +196,71 @@ public:
     // spanning too many cells is matched against every face instead
     std::nth_element(extents.begin(), extents.begin() + extents.size() / 2, extents.end());
     const double cell = std::max(extents[extents.size() / 2], 1e-300);
-    auto cell_of = [cell](double x) { return std::int64_t(std::floor(x / cell)); };
-    auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-      return std::uint64_t(x) * 73856093u ^ std::uint64_t(y) * 19349663u ^ std::uint64_t(z) * 83492791u;
-    };
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
     std::vector<std::uint32_t> big;
     for (std::size_t i = 0; i < loops.size(); ++i) {
       const Box& b = loop_boxes_[i];
       if (b.empty()) continue;
-      std::int64_t lo[3], hi[3];
-      double cells = 1;
-      for (int d = 0; d < 3; ++d) {
-        lo[d] = cell_of(b.lo[d]);
-        hi[d] = cell_of(b.hi[d]);
-        cells *= double(hi[d] - lo[d] + 1);
-      }
-      if (!(cells <= 512)) { big.push_back(std::uint32_t(i)); continue; }
-      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
-        for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-          for (std::int64_t z = lo[2]; z <= hi[2]; ++z) grid[key(x, y, z)].push_back(std::uint32_t(i));
+      const Cells c = cells_of(b, cell);
+      if (!(c.count <= 512)) { big.push_back(std::uint32_t(i)); continue; }
+      c.for_each([&](std::uint64_t k) { grid[k].push_back(std::uint32_t(i)); });
     }
-    std::vector<std::uint32_t> seen;
-    for (face_descriptor f : faces(pm_)) {
-      const Box fb = face_box(f);
-      if (fb.empty() || !std::isfinite(fb.lo[0] + fb.hi[0] + fb.lo[1] + fb.hi[1] + fb.lo[2] + fb.hi[2]))
-        continue;
-      for (std::uint32_t i : big)
-        if (loop_boxes_[i].meets(fb)) near_[i].push_back(f);
-      if (grid.empty()) continue;
-      std::int64_t lo[3], hi[3];
-      for (int d = 0; d < 3; ++d) {
-        lo[d] = cell_of(fb.lo[d]);
-        hi[d] = cell_of(fb.hi[d]);
-      }
-      seen.clear();
-      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
-        for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-          for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
-            auto it = grid.find(key(x, y, z));
-            if (it == grid.end()) continue;
+    // The faces are matched in blocks, in parallel where the mesh allows it
+    // (reads only), and appended block by block: the lists do not depend on
+    // the threads. Loop boxes that overlap much of a large model would make
+    // the lists quadratic: past a budget of entries they are dropped and
+    // every patch is tested against all faces instead (slower, bounded memory).
+    std::vector<face_descriptor> all(faces(pm_).begin(), faces(pm_).end());
+    const std::size_t budget = 8 * all.size() + (std::size_t(1) << 20);
+    const std::size_t block = 1 << 14, blocks = (all.size() + block - 1) / block;
+    std::vector<std::vector<std::pair<std::uint32_t, face_descriptor>>> found(blocks);
+    std::atomic<std::size_t> entries{0};
+    auto match = [&](std::size_t b) {
+      std::vector<std::uint32_t> seen;
+      auto& out = found[b];
+      for (std::size_t k = b * block; k < std::min(all.size(), (b + 1) * block); ++k) {
+        if (entries.load(std::memory_order_relaxed) > budget) return;
+        const face_descriptor f = all[k];
+        const Box fb = face_box(f);
+        if (fb.empty() || !std::isfinite(fb.lo[0] + fb.hi[0] + fb.lo[1] + fb.hi[1] + fb.lo[2] + fb.hi[2]))
+          continue;
+        const std::size_t before = out.size();
+        for (std::uint32_t i : big)
+          if (loop_boxes_[i].meets(fb)) out.emplace_back(i, f);
+        const Cells c = cells_of(fb, cell);
+        if (!(c.count <= 64)) {  // a face far larger than the loops: every loop box
+          for (std::size_t i = 0; i < loop_boxes_.size(); ++i)
+            if (!loop_boxes_[i].empty() && loop_boxes_[i].meets(fb) &&
+                std::find(big.begin(), big.end(), std::uint32_t(i)) == big.end())
+              out.emplace_back(std::uint32_t(i), f);
+        } else if (!grid.empty()) {
+          seen.clear();
+          c.for_each([&](std::uint64_t k) {
+            auto it = grid.find(k);
+            if (it == grid.end()) return;
             for (std::uint32_t i : it->second)
-              if (loop_boxes_[i].meets(fb) &&
-                  std::find(seen.begin(), seen.end(), i) == seen.end()) {
+              if (loop_boxes_[i].meets(fb) && std::find(seen.begin(), seen.end(), i) == seen.end()) {
                 seen.push_back(i);
-                near_[i].push_back(f);
+                out.emplace_back(i, f);
               }
-          }
+          });
+        }
+        entries.fetch_add(out.size() - before, std::memory_order_relaxed);
+      }
+    };
+    // only reads: safe on Surface_mesh's arrays, kept sequential elsewhere
+    // like the library's other loops over mesh elements
+    if (Is_surface_mesh<PM>::value)
+      parallel_for_index(blocks, 1, match);
+    else
+      for (std::size_t b = 0; b < blocks; ++b) match(b);
+    if (entries.load() > budget) {
+      loop_boxes_.assign(loops.size(), Box());
+      near_.assign(loops.size(), {});
+      return;
     }
+    for (const auto& out : found)
+      for (const auto& e : out) near_[e.first].push_back(e.second);
   }
 
   /// whether the faces of `patch`, filling prepared loop `i`, meet the

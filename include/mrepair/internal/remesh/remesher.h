@@ -842,9 +842,14 @@ public:
       put(pos_, vs[i], np[i]);
       if (!uniform_) put(size_, vs[i], ns[i]);
     });
-    // undo moves that fold a face over (checked against the normal before)
-    std::vector<char> bad(vs.size(), 0);
-    for_each_index(vs.size(), [&](std::size_t i) {
+    // undo moves that fold a face over (checked against the normal before).
+    // The moves were made all at once, so undoing one can fold a face of a
+    // neighbour that was checked against the undone position: check the
+    // kept moves again until none folds (each round only undoes more, and
+    // with every move undone the mesh is the one before).
+    std::vector<char> bad(vs.size(), 0), undone(vs.size(), 0);
+    auto check = [&](std::size_t i) {
+      if (undone[i]) return;
       vertex_descriptor v = vs[i];
       const Vec3 pv = get(pos_, v);
       for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
@@ -852,13 +857,20 @@ public:
         Vec3 fn = cross(pv - get(pos_, source(g, tm_)), get(pos_, target(next(g, tm_), tm_)) - pv);
         if (dot(fn, normal[i]) <= 0) { bad[i] = 1; break; }
       }
-    });
-    for (std::size_t i = 0; i < vs.size(); ++i) {
-      if (bad[i])
-        put(pos_, vs[i], old[i]);
-      else
-        ++counters.relaxed;
+    };
+    for (;;) {
+      for_each_index(vs.size(), check);
+      bool more = false;
+      for (std::size_t i = 0; i < vs.size(); ++i)
+        if (bad[i] && !undone[i]) {
+          put(pos_, vs[i], old[i]);
+          undone[i] = 1;
+          more = true;
+        }
+      if (!more) break;
     }
+    for (std::size_t i = 0; i < vs.size(); ++i)
+      if (!undone[i]) ++counters.relaxed;
   }
 
   /// runs `iterations` rounds; `stop()` is polled between phases. Returns
