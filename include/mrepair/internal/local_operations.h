@@ -348,6 +348,39 @@ public:
     counts.faces_removed += patch.size();
   }
 
+  /// adds `triangles` into the border loop they fill (the faces of a patch
+  /// taken back with `remove_patch`, say), each next to those added before
+  /// where it can be; `added` receives the new faces. False when some cannot
+  /// be added (those that went in stay, in `added`).
+  bool insert_triangles(const std::vector<std::array<vertex_descriptor, 3>>& triangles,
+                        std::vector<face_descriptor>& added)
+  {
+    std::vector<std::array<vertex_descriptor, 3>> todo = triangles, later;
+    auto next_to_border = [&](const std::array<vertex_descriptor, 3>& t) {
+      for (int k = 0; k < 3; ++k)
+        if (halfedge(t[k], t[(k + 1) % 3], pm_).second) return true;
+      return false;
+    };
+    bool anywhere = false;  // a face on its own only when none goes next to the border
+    while (!todo.empty()) {
+      later.clear();
+      for (const auto& t : todo) {
+        face_descriptor f = GT::null_face();
+        if ((anywhere || next_to_border(t)) && CGAL::Euler::can_add_face(t, pm_))
+          f = CGAL::Euler::add_face(t, pm_);
+        if (f == GT::null_face()) later.push_back(t);
+        else { added.push_back(f); ++counts.faces_added; }
+      }
+      if (later.size() == todo.size()) {
+        if (anywhere) return false;
+        anywhere = true;
+      } else
+        anywhere = false;
+      todo.swap(later);
+    }
+    return true;
+  }
+
   /// removes whole connected components given by all their faces: nothing
   /// around them survives, so no pinch can arise.
   std::size_t remove_components(const std::vector<face_descriptor>& component_faces)

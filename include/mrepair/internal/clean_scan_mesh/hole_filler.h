@@ -19,6 +19,7 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <iterator>
 #include <set>
@@ -170,6 +171,9 @@ public:
           pm_, h, std::back_inserter(patch),
           CGAL::parameters::vertex_point_map(vpm_).use_delaunay_triangulation(n > delaunay_above_));
       if (patch.empty()) return false;
+      // Liepa's patch, kept to fall back on when the refined one crosses
+      const std::vector<vertex_descriptor> loop_before = loop;
+      const std::vector<std::array<vertex_descriptor, 3>> coarse = triangles_of(patch);
       if (refine_ && n > 3) refine(patch_ops, patch, density_ * lsum / double(n), added, loop);
       // Fairing reads the 2-ring of the patch vertices with exact predicates,
       // which fail on NaN: skip it next to a non-finite vertex.
@@ -177,16 +181,52 @@ public:
         CGAL::Polygon_mesh_processing::fair(pm_, added, CGAL::parameters::vertex_point_map(vpm_));
       if (guard_.patch_intersects(index, patch)) {
         patch_ops.remove_patch(patch);
+        const bool refined = !added.empty();
         added.clear();
-        ++result.fills_rejected_intersecting;
-        last_fill_intersected_ = true;
-        return false;
+        patch.clear();
+        // A refinement or fairing can fold where Liepa's patch did not: put
+        // the coarse patch back (its loop vertices as the refinement left
+        // them) and keep it when it crosses nothing.
+        if (!refined || !put_back(patch_ops, coarse, loop_before, loop, patch) ||
+            guard_.patch_intersects(index, patch)) {
+          if (!patch.empty()) patch_ops.remove_patch(patch);
+          ++result.fills_rejected_intersecting;
+          last_fill_intersected_ = true;
+          return false;
+        }
       }
       guard_.accept(patch);
       result.faces_added += patch.size();
       result.vertices_added += added.size();
       return true;
     });
+  }
+
+  std::vector<std::array<vertex_descriptor, 3>> triangles_of(const std::vector<face_descriptor>& fs) const
+  {
+    std::vector<std::array<vertex_descriptor, 3>> ts;
+    for (face_descriptor f : fs) {
+      std::array<vertex_descriptor, 3> t;
+      int k = 0;
+      for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_))
+        if (k < 3) t[k++] = v;
+      ts.push_back(t);
+    }
+    return ts;
+  }
+
+  // Re-inserts Liepa's triangles `coarse` into the loop; a loop vertex the
+  // refinement replaced (loop_before[i] -> loop[i], same position) is mapped.
+  bool put_back(Operations& patch_ops, std::vector<std::array<vertex_descriptor, 3>> coarse,
+                const std::vector<vertex_descriptor>& loop_before,
+                const std::vector<vertex_descriptor>& loop, std::vector<face_descriptor>& patch)
+  {
+    for (auto& t : coarse)
+      for (vertex_descriptor& v : t) {
+        const auto it = std::find(loop_before.begin(), loop_before.end(), v);
+        if (it != loop_before.end()) v = loop[std::size_t(it - loop_before.begin())];
+      }
+    return patch_ops.insert_triangles(coarse, patch);
   }
 
   // Refines a patch to edge length `L` (Botsch-Kobbelt style, patch only):

@@ -165,9 +165,6 @@ class Patch_intersection_guard
   }
 
 public:
-  /// faces read in the pass of `prepare` and triangle pairs tested, for the report
-  std::size_t pairs_tested = 0;
-
   Patch_intersection_guard(PM& pm, VPM vpm) : pm_(pm), vpm_(vpm) {}
 
   /// collects the faces near each loop of `loops` whose `guarded(i)` holds
@@ -282,7 +279,6 @@ public:
     for (std::size_t a = 0; a < order.size(); ++a)
       for (std::size_t b = a + 1; b < order.size(); ++b) {
         if (tris[order[b]].box.lo[0] > tris[order[a]].box.hi[0]) break;
-        ++pairs_tested;
         if (meet(tris[order[a]], tris[order[b]])) return true;
       }
     const std::set<face_descriptor> own(patch.begin(), patch.end());
@@ -304,7 +300,6 @@ public:
       if (own.count(g) || !pb.meets(face_box(g))) continue;
       const Tri t = read(g);
       for (const Tri& p : tris) {
-        ++pairs_tested;
         if (meet(p, t)) {
           met.push_back(g);
           met_tris.push_back(t);
@@ -346,7 +341,6 @@ public:
   {
     for (face_descriptor h : candidates) {
       if (h == g || own.count(h) || !t.box.meets(face_box(h))) continue;
-      ++pairs_tested;
       if (meet(t, read(h))) return true;
     }
     return false;
