@@ -768,6 +768,16 @@ TYPED_TEST(Clean_pipeline, steps_keep_statistics_current_through_the_local_opera
   EXPECT_GE(h.holes_filled, 2u);
   EXPECT_GE(h.enlargements, 1u);
   EXPECT_TRUE(stats_equal_fresh(m, st));
+  // an edge split (the patches no longer split through the operations)
+  for (auto h : halfedges(m)) {
+    if (is_border(h, m) || is_border(opposite(h, m), m)) continue;
+    const Point a = get(vpm, source(h, m)), b = get(vpm, target(h, m));
+    const std::size_t faces_before_split = face_count(m);
+    ops.split_edge(h, {{0.5 * (a.x() + b.x()), 0.5 * (a.y() + b.y()), 0.5 * (a.z() + b.z())}});
+    EXPECT_EQ(face_count(m), faces_before_split + 2);
+    break;
+  }
+  EXPECT_TRUE(stats_equal_fresh(m, st));
   // a removal that no later insertion recycles (a Surface_mesh reuses the
   // slots of removed faces for new ones, as the patches did)
   std::vector<typename boost::graph_traits<Mesh>::face_descriptor> one{*faces(m).begin()};

@@ -56,17 +56,19 @@ namespace mrepair {
 ///     angle, then area; existing edges and degenerate triangles excluded)
 ///   if no valid triangulation exists (the fill would create a complex edge):
 ///     mark it aborted
-///   else refine the patch to the density of the loop's edges x hole_density_factor
-///     (split > 4/3 L, flip to valence 6, relax), fair it if asked
+///   else remesh the patch to the density of the loop's edges x hole_density_factor
+///     (the library's isotropic remesher, 3 iterations, loop protected,
+///     vertices projected onto Liepa's patch), fair it if asked
 /// repeat at most max_hole_enlargements times while some fills aborted:
 ///   leave open the loops whose component is under 10x their 1-ring's faces
 ///   remove the 1-ring faces of the aborted loops (no pinched vertex left)
 ///   fill the loops this makes if they are still small, else leave them open
 /// \endcode
 /// A loop with a non-finite vertex is neither filled nor enlarged (listed in
-/// `open_holes` with reason "non_finite"). Existing vertices never move; patch
-/// vertices are edge midpoints and centroids of the patch, inside the bounding
-/// box of the mesh. Faces are removed only by enlargements, so always
+/// `open_holes` with reason "non_finite"). Existing vertices never move;
+/// unless the patch is faired, patch vertices lie on Liepa's patch, inside
+/// the bounding box of the loop. A remeshed patch with a degenerate or
+/// self-intersecting face is dropped and Liepa's patch stays. Faces are removed only by enlargements, so always
 /// faces after = faces before - `enlargement_faces_removed` + `faces_added`.
 /// Holes at or above the limit are never filled: the paper only polishes
 /// large holes (`clean_boundaries()`) and leaves completion to other tools.

@@ -28,7 +28,10 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <map>
+#include <set>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #if !defined(MREPAIR_CHECK_LOCAL_OPERATIONS) && !defined(NDEBUG)
@@ -378,6 +381,70 @@ public:
         anywhere = false;
       todo.swap(later);
     }
+    return true;
+  }
+
+  /// replaces `patch` (faces this object inserted into one border loop, with
+  /// no vertex of their own) by `triangles`, indices into `corners`: a corner
+  /// that is a vertex of the loop is given there, a new one is null there and
+  /// is created at `positions[i]`. False, and the old patch back in place,
+  /// when the new faces cannot go in (an inner edge would join two loop
+  /// vertices already joined outside the patch). On success `patch` holds
+  /// the new faces and `created` the new vertices.
+  bool replace_patch(std::vector<face_descriptor>& patch, std::vector<vertex_descriptor> corners,
+                     const std::vector<Vec3>& positions,
+                     const std::vector<std::array<std::size_t, 3>>& triangles,
+                     std::vector<vertex_descriptor>& created)
+  {
+    using Triangle = std::array<vertex_descriptor, 3>;
+    // an inner edge (two triangles) between two loop vertices must not exist
+    // outside the old patch: the new face would go in on another border
+    {
+      std::set<face_descriptor> old_faces(patch.begin(), patch.end());
+      std::map<std::pair<std::size_t, std::size_t>, int> uses;
+      for (const auto& t : triangles)
+        for (int k = 0; k < 3; ++k) ++uses[std::minmax(t[k], t[(k + 1) % 3])];
+      for (const auto& u : uses) {
+        const vertex_descriptor a = corners[u.first.first], b = corners[u.first.second];
+        if (u.second < 2 || a == GT::null_vertex() || b == GT::null_vertex()) continue;
+        const auto h = halfedge(a, b, pm_);
+        if (!h.second) continue;
+        for (halfedge_descriptor g : {h.first, opposite(h.first, pm_)})
+          if (is_border(g, pm_) || !old_faces.count(face(g, pm_))) return false;
+      }
+    }
+    std::vector<Triangle> old_triangles;
+    old_triangles.reserve(patch.size());
+    for (face_descriptor f : patch) {
+      Triangle t;
+      int k = 0;
+      for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_))
+        if (k < 3) t[k++] = v;
+      old_triangles.push_back(t);
+    }
+    remove_patch(patch);
+    patch.clear();
+    created.clear();
+    for (std::size_t i = 0; i < corners.size(); ++i)
+      if (corners[i] == GT::null_vertex()) {
+        corners[i] = add_vertex(pm_);
+        set_point(vpm_, corners[i], positions[i]);
+        created.push_back(corners[i]);
+      }
+    std::vector<Triangle> new_triangles(triangles.size());
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k) new_triangles[i][k] = corners[triangles[i][k]];
+    if (!insert_triangles(new_triangles, patch)) {
+      // the old patch went in before, so it goes in again
+      remove_patch(patch);
+      for (vertex_descriptor v : created)
+        if (halfedge(v, pm_) == GT::null_halfedge()) remove_vertex(v, pm_);
+      created.clear();
+      patch.clear();
+      insert_triangles(old_triangles, patch);
+      return false;
+    }
+    counts.vertices_added += created.size();
     return true;
   }
 

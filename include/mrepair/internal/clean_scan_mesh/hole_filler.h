@@ -10,18 +10,25 @@
 #include <mrepair/internal/clean_scan_mesh/patch_guard.h>
 #include <mrepair/internal/clean_scan_mesh/safety.h>
 #include <mrepair/internal/local_operations.h>
+#include <mrepair/internal/remesh/driver.h>
 #include <mrepair/status.h>
+#include <mrepair/visitors.h>
 
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
 #include <CGAL/Polygon_mesh_processing/fair.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/property_map.h>
 
 #include <algorithm>
 #include <array>
 #include <cstddef>
 #include <iterator>
+#include <map>
 #include <set>
 #include <utility>
 #include <vector>
@@ -58,6 +65,9 @@ class Small_hole_filler
   std::set<halfedge_descriptor> intersected_;  // failed loops whose last patch was taken back
 
 public:
+  /// remeshing iterations of a patch
+  static constexpr int refine_iterations = 3;
+
   Hole_filling_result result;
 
   Small_hole_filler(Operations& ops, std::size_t max_vertices, double density, bool refine,
@@ -174,7 +184,7 @@ public:
       // Liepa's patch, kept to fall back on when the refined one crosses
       const std::vector<vertex_descriptor> loop_before = loop;
       const std::vector<std::array<vertex_descriptor, 3>> coarse = triangles_of(patch);
-      if (refine_ && n > 3) refine(patch_ops, patch, density_ * lsum / double(n), added, loop);
+      if (refine_ && n > 3) refine(patch_ops, patch, density_ * lsum / double(n), added);
       // Fairing reads the 2-ring of the patch vertices with exact predicates,
       // which fail on NaN: skip it next to a non-finite vertex.
       if (fair_ && !added.empty() && two_rings_are_finite(added))
@@ -229,220 +239,82 @@ public:
     return patch_ops.insert_triangles(coarse, patch);
   }
 
-  // Refines a patch to edge length `L` (Botsch-Kobbelt style, patch only):
-  // split interior edges longer than 4/3 L, flip towards valence 6, relax new
-  // vertices with the uniform Laplacian. The loop's edges and vertices stay.
+  // Refines the patch to edge length `L` with the library's own remesher
+  // (RameshCleaner 3.4: Liepa's patch, then isotropic remeshing of the
+  // patch): the patch is copied into a small Surface_mesh whose border is the
+  // loop, remeshed there with the border protected (the loop's edges and
+  // vertices stay) and projected onto Liepa's patch, then put back in place
+  // of the coarse patch through the local operations. The remesher sees the
+  // patch only, so a fill costs O(patch) however large the mesh. When the
+  // remeshed patch cannot go back (a new inner edge would join two loop
+  // vertices joined elsewhere), Liepa's patch stays.
   void refine(Operations& patch_ops, std::vector<face_descriptor>& patch, double L,
-              std::vector<vertex_descriptor>& added, std::vector<vertex_descriptor>& loop)
+              std::vector<vertex_descriptor>& added)
   {
+    using Small = CGAL::Surface_mesh<CGAL::Epick::Point_3>;
+    using Small_vertex = typename Small::Vertex_index;
+    using Small_face = typename Small::Face_index;
+    constexpr std::size_t none = std::size_t(-1);
     if (!(L > 0.)) return;
-    std::set<face_descriptor> in(patch.begin(), patch.end());
-    auto interior = [&](halfedge_descriptor h) {
-      return !is_border_edge(h, pm_) && in.count(face(h, pm_)) &&
-             in.count(face(opposite(h, pm_), pm_));
-    };
-    auto sqlen = [&](halfedge_descriptor h) {
-      Vec3 d = sub(point(vpm_, target(h, pm_)), point(vpm_, source(h, pm_)));
-      return dot(d, d);
-    };
-    const double high2 = (4. / 3. * L) * (4. / 3. * L);
-    const double low2 = (4. / 5. * L) * (4. / 5. * L);
-    std::set<vertex_descriptor> added_set;
-    std::vector<halfedge_descriptor> hs;
-    // Flip and relax first, split last: the loop ends on a split pass that
-    // found nothing, so every patch edge is at most 4/3 L on exit.
-    for (int round = 0; round < 12; ++round) {
-      // Flip interior edges towards valence 6 when it does not fold the patch.
-      for (int pass = 0; pass < 2; ++pass) {
-        hs.clear();
-        for (face_descriptor f : patch)
-          for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, pm_), pm_))
-            if (interior(h) && h < opposite(h, pm_)) hs.push_back(h);
-        for (halfedge_descriptor h : hs) try_flip(patch_ops, h);
-      }
-      // Relax the new vertices (uniform Laplacian, Jacobi).
-      for (int it = 0; it < 3; ++it) {
-        std::vector<Vec3> np(added.size());
-        for (std::size_t i = 0; i < added.size(); ++i) {
-          Vec3 c{0, 0, 0};
-          int k = 0;
-          for (vertex_descriptor w : CGAL::vertices_around_target(halfedge(added[i], pm_), pm_)) {
-            c = add(c, point(vpm_, w));
-            ++k;
-          }
-          np[i] = k ? mul(c, 1. / k) : point(vpm_, added[i]);
+    Small s;
+    auto corner_index = s.add_property_map<Small_vertex, std::size_t>("v:mrepair_corner", none).first;
+    std::vector<vertex_descriptor> corners;  // loop vertices, by corner index
+    std::map<vertex_descriptor, Small_vertex> local;
+    for (face_descriptor f : patch) {
+      std::array<Small_vertex, 3> t;
+      int k = 0;
+      for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_)) {
+        auto it = local.find(v);
+        if (it == local.end()) {
+          const Vec3 p = point(vpm_, v);
+          const Small_vertex sv = s.add_vertex(Small::Point(p[0], p[1], p[2]));
+          corner_index[sv] = corners.size();
+          corners.push_back(v);
+          it = local.emplace(v, sv).first;
         }
-        patch_ops.move_vertices(added, np);
+        if (k < 3) t[k] = it->second;
+        ++k;
       }
-      // Split, longest first.
-      hs.clear();
-      for (face_descriptor f : patch)
-        for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, pm_), pm_))
-          if (interior(h) && h < opposite(h, pm_) && sqlen(h) > high2) hs.push_back(h);
-      std::sort(hs.begin(), hs.end(), [&](halfedge_descriptor a, halfedge_descriptor b) {
-        return sqlen(a) > sqlen(b);
-      });
-      std::size_t splits = 0;
-      for (halfedge_descriptor h : hs) {
-        if (sqlen(h) <= high2) continue;
-        Vec3 m = mul(add(point(vpm_, source(h, pm_)), point(vpm_, target(h, pm_))), 0.5);
-        std::vector<face_descriptor> cut;
-        const vertex_descriptor vn = patch_ops.split_edge(h, m, &cut);
-        added.push_back(vn);
-        added_set.insert(vn);
-        // both sides were patch triangles: every face beside the new edges is in the patch
-        for (face_descriptor f : cut)
-          if (in.insert(f).second) patch.push_back(f);
-        ++splits;
-      }
-      // Collapse short edges at new vertices (the splits of fan-shaped
-      // initial triangulations crowd vertices), shortest first.
-      const std::size_t collapses =
-          collapse_short_edges(patch_ops, patch, in, L, low2, added_set, loop, interior, sqlen);
-      added.assign(added_set.begin(), added_set.end());
-      if (splits == 0 && collapses == 0) break;
+      // a loop through one vertex twice: no disc to remesh, Liepa's patch stays
+      if (k != 3 || s.add_face(t[0], t[1], t[2]) == Small::null_face()) return;
     }
-  }
-
-  // Collapses interior patch edges shorter than `low2` (squared) with a new
-  // vertex at one end, shortest first, in batches: a batch lists the
-  // candidates once and sorts them, so that a dense patch costs
-  // O(n log n) per batch instead of a rescan of the patch per collapse
-  // (a 24-vertex hole filled at density factor 0.1, about 8,500 faces, took
-  // 17 s with rescans). Candidates are kept as vertex pairs and looked up
-  // again: a collapse frees halfedges (on Polyhedron_3) and one vertex, whose
-  // handle is only compared afterwards, never dereferenced.
-  template <typename Interior, typename Sqlen>
-  std::size_t collapse_short_edges(Operations& patch_ops, std::vector<face_descriptor>& patch,
-                                   std::set<face_descriptor>& in, double L, double low2,
-                                   std::set<vertex_descriptor>& added_set,
-                                   std::vector<vertex_descriptor>& loop, const Interior& interior,
-                                   const Sqlen& sqlen)
-  {
-    using Candidate = std::pair<double, std::pair<vertex_descriptor, vertex_descriptor>>;
-    const std::size_t cap = 4 * patch.size();
-    std::size_t total = 0;
-    std::vector<Candidate> candidates;
-    std::set<vertex_descriptor> gone;
-    while (total < cap) {
-      candidates.clear();
-      for (face_descriptor f : patch)
-        for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, pm_), pm_)) {
-          const vertex_descriptor a = source(h, pm_), b = target(h, pm_);
-          if (h < opposite(h, pm_) && interior(h) && sqlen(h) < low2 &&
-              (added_set.count(a) || added_set.count(b)))
-            candidates.push_back(Candidate(sqlen(h), std::make_pair(a, b)));
-        }
-      std::sort(candidates.begin(), candidates.end(),
-                [](const Candidate& x, const Candidate& y) { return x.first < y.first; });
-      gone.clear();
-      std::size_t batch = 0;
-      for (const Candidate& c : candidates) {
-        if (total >= cap) break;
-        const vertex_descriptor a = c.second.first, b = c.second.second;
-        if (gone.count(a) || gone.count(b)) continue;
-        const auto found = halfedge(a, b, pm_);
-        if (!found.second) continue;
-        const halfedge_descriptor h = found.first;
-        if (!interior(h) || !(sqlen(h) < low2) || !(added_set.count(a) || added_set.count(b)) ||
-            !can_collapse(patch_ops, h, L, added_set))
-          continue;
-        const vertex_descriptor kept = collapse(patch_ops, h, added_set, in, loop);
-        gone.insert(kept == a ? b : a);
-        ++batch;
-        ++total;
-      }
-      if (batch == 0) break;
-      patch.assign(in.begin(), in.end());
+    Remesh_options options;
+    options.iterations = refine_iterations;
+    options.protect = true;        // the loop is the patch's border: it stays
+    options.feature_angle = -1.;   // a coarse patch's creases are no features
+    using No_constraint = CGAL::Static_boolean_property_map<typename Small::Edge_index, false>;
+    using No_fixed = CGAL::Static_boolean_property_map<Small_vertex, false>;
+    Visitor_handle<CGAL::parameters::Default_named_parameters> quiet(CGAL::parameters::default_values());
+    const Remeshing_result r = remesh_driver<false>(
+        s, static_cast<const std::vector<Small_face>*>(nullptr), Remesh_mode::uniform, L, options,
+        s.points(), No_constraint(), No_fixed(), quiet, start_remeshing_result(s, Remesh_mode::uniform));
+    if (!succeeded(r.status)) return;
+    // The remesher can fold a dense patch along a protected border much
+    // coarser than the target (a flat square loop of edges 4 L, 5 or more
+    // iterations): a remeshed patch with a degenerate or crossing face is
+    // dropped and Liepa's patch stays.
+    for (Small_face f : s.faces())
+      if (CGAL::Polygon_mesh_processing::is_degenerate_triangle_face(f, s)) return;
+    if (CGAL::Polygon_mesh_processing::does_self_intersect(s)) return;
+    // `s` was compacted: corner indices moved with their vertices
+    std::vector<vertex_descriptor> corner_of(s.number_of_vertices(), GT::null_vertex());
+    std::vector<Vec3> positions(s.number_of_vertices());
+    for (Small_vertex v : s.vertices()) {
+      const std::size_t c = corner_index[v];
+      if (c != none) corner_of[std::size_t(v)] = corners[c];
+      const Small::Point& p = s.point(v);
+      positions[std::size_t(v)] = Vec3{{p.x(), p.y(), p.z()}};
     }
-    return total;
-  }
-
-  // Position of the vertex kept when `h`'s edge collapses: an original
-  // vertex stays where it is, two new vertices meet at the midpoint.
-  Vec3 collapse_point(halfedge_descriptor h, const std::set<vertex_descriptor>& added_set) const
-  {
-    vertex_descriptor a = source(h, pm_), b = target(h, pm_);
-    if (!added_set.count(a)) return point(vpm_, a);
-    if (!added_set.count(b)) return point(vpm_, b);
-    return mul(add(point(vpm_, a), point(vpm_, b)), 0.5);
-  }
-
-  // Link condition, no edge longer than 4/3 L, no face turned over.
-  bool can_collapse(const Operations& patch_ops, halfedge_descriptor h, double L,
-                    const std::set<vertex_descriptor>& added_set)
-  {
-    if (!patch_ops.collapse_keeps_manifold(h)) return false;
-    const Vec3 p = collapse_point(h, added_set);
-    const double high2 = (4. / 3. * L) * (4. / 3. * L);
-    vertex_descriptor a = source(h, pm_), b = target(h, pm_);
-    for (vertex_descriptor v : {a, b})
-      for (halfedge_descriptor k : CGAL::halfedges_around_target(v, pm_)) {
-        vertex_descriptor w = source(k, pm_);
-        if (w == a || w == b) continue;
-        Vec3 d = sub(point(vpm_, w), p);
-        if (dot(d, d) > high2) return false;
-        if (is_border(k, pm_)) continue;
-        // Face of k: (.., w, v): skip the two faces that vanish.
-        face_descriptor f = face(k, pm_);
-        if (f == face(h, pm_) || f == face(opposite(h, pm_), pm_)) continue;
-        Vec3 q[3];
-        int i = 0;
-        Vec3 before = face_normal(k, pm_, vpm_);
-        for (vertex_descriptor u : CGAL::vertices_around_face(k, pm_))
-          q[i++] = (u == a || u == b) ? p : point(vpm_, u);
-        Vec3 after = cross(sub(q[1], q[0]), sub(q[2], q[0]));
-        if (dot(before, after) <= 0.) return false;
-      }
-    return true;
-  }
-
-  // `loop` lists the loop's vertices: when the collapse keeps the new vertex
-  // (CGAL keeps target(halfedge(e))), it takes the original's place there.
-  // Returns the vertex kept.
-  vertex_descriptor collapse(Operations& patch_ops, halfedge_descriptor h,
-                             std::set<vertex_descriptor>& added_set,
-                             std::set<face_descriptor>& in, std::vector<vertex_descriptor>& loop)
-  {
-    const Vec3 p = collapse_point(h, added_set);
-    const vertex_descriptor a = source(h, pm_), b = target(h, pm_);
-    const bool keep_original = !added_set.count(a) || !added_set.count(b);
-    const vertex_descriptor original = added_set.count(a) ? b : a;
-    in.erase(face(h, pm_));
-    in.erase(face(opposite(h, pm_), pm_));
-    added_set.erase(source(h, pm_));
-    added_set.erase(target(h, pm_));
-    const vertex_descriptor v = patch_ops.collapse_edge(h, p);
-    if (!keep_original)
-      added_set.insert(v);  // two new vertices merged: still new
-    else if (v != original)
-      std::replace(loop.begin(), loop.end(), original, v);
-    return v;
-  }
-
-  bool try_flip(Operations& patch_ops, halfedge_descriptor h)
-  {
-    if (!patch_ops.flip_keeps_manifold(h, 3)) return false;
-    halfedge_descriptor o = opposite(h, pm_);
-    vertex_descriptor a = target(h, pm_), b = target(o, pm_);
-    vertex_descriptor c = target(next(h, pm_), pm_), d = target(next(o, pm_), pm_);
-    auto val = [&](vertex_descriptor v) { return int(degree(v, pm_)); };
-    const int va = val(a), vb = val(b), vc = val(c), vd = val(d);
-    auto dev = [](int x) { return std::abs(x - 6); };
-    int before = dev(va) + dev(vb) + dev(vc) + dev(vd);
-    int after = dev(va - 1) + dev(vb - 1) + dev(vc + 1) + dev(vd + 1);
-    if (after >= before) return false;
-    // Geometry: both new triangles keep the orientation of the old pair.
-    Vec3 pa = point(vpm_, a), pb = point(vpm_, b), pc = point(vpm_, c), pd = point(vpm_, d);
-    Vec3 n_old = add(cross(sub(pa, pb), sub(pc, pb)), cross(sub(pb, pa), sub(pd, pa)));
-    // h: b->a in face (b, a, c); o: a->b in face (a, b, d); the quad is
-    // a-c-b-d and the flip makes (b, d, c) and (a, c, d).
-    Vec3 n1 = cross(sub(pd, pb), sub(pc, pb)), n2 = cross(sub(pc, pa), sub(pd, pa));
-    if (dot(n1, n_old) <= 0. || dot(n2, n_old) <= 0.) return false;
-    // No needle: each new triangle keeps a fair share of the pair's area.
-    if (norm(n1) <= 1e-2 * norm(n_old) || norm(n2) <= 1e-2 * norm(n_old)) return false;
-    patch_ops.flip_edge(h);
-    return true;
+    std::vector<std::array<std::size_t, 3>> triangles;
+    triangles.reserve(s.number_of_faces());
+    for (Small_face f : s.faces()) {
+      std::array<std::size_t, 3> t;
+      int k = 0;
+      for (Small_vertex v : CGAL::vertices_around_face(s.halfedge(f), s)) t[k++] = std::size_t(v);
+      triangles.push_back(t);
+    }
+    std::vector<vertex_descriptor> created;
+    if (patch_ops.replace_patch(patch, corner_of, positions, triangles, created)) added = created;
   }
 
   // Removes the faces around the loops of `holes` (their boundary's 1-ring),

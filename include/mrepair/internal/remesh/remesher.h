@@ -46,7 +46,7 @@ namespace mrepair {
 namespace internal {
 namespace remesh {
 
-enum : char { LINE = 1, FROZEN = 2, FEATURE = 4 };
+enum : char { LINE = 1, FROZEN = 2, FEATURE = 4, HELD = 8 };  // HELD: unsplit during one split phase
 enum : char { V_FREE = 0, V_LINE = 1, V_FROZEN = 2 };
 
 template <typename VD>
@@ -304,9 +304,44 @@ public:
     ++counters.splits;
   }
 
+  // A frozen edge longer than 4/3 L can never be split, so the face beside
+  // it always keeps a long side: splitting that side puts the new vertex
+  // halfway down to the frozen edge, and every later pass halves the height
+  // again until the faces along the frozen edge are degenerate (a protected
+  // border of edges 4 L folded into thousands of zero-area faces). Such a
+  // split is refused when the new face on the frozen edge would be thinner
+  // than the old one and than `frozen_split_min_deg`: the faces beside a long
+  // frozen edge stay large and the mesh grades away from it.
+  static constexpr double frozen_split_min_deg = 20.;
+
+  bool split_thins_a_frozen_side(halfedge_descriptor h) const
+  {
+    static const double cthr = std::cos(frozen_split_min_deg * CGAL_PI / 180.);
+    const vertex_descriptor a = source(h, tm_), b = target(h, tm_);
+    const Vec3 pa = get(pos_, a), pb = get(pos_, b), m = 0.5 * (pa + pb);
+    for (halfedge_descriptor g : {h, opposite(h, tm_)}) {
+      if (is_border(g, tm_)) continue;
+      // face (s, t, c) of g; after the split: (s, m, c) and (m, t, c)
+      const vertex_descriptor s = source(g, tm_), t = target(g, tm_), c = target(next(g, tm_), tm_);
+      const Vec3 ps = get(pos_, s), pt = get(pos_, t), pc = get(pos_, c);
+      const double old_cos = min_angle_cos(ps, pt, pc);
+      const halfedge_descriptor sides[2] = {prev(g, tm_), next(g, tm_)};  // (c, s), (t, c)
+      for (int i = 0; i < 2; ++i) {
+        const halfedge_descriptor side = sides[i];
+        if (!(get(flag_, edge(side, tm_)) & (FROZEN | HELD))) continue;
+        const double hi = 4. / 3. * tsize(source(side, tm_), target(side, tm_));
+        if (sqlength(side) <= hi * hi) continue;
+        const double new_cos = i == 0 ? min_angle_cos(ps, m, pc) : min_angle_cos(m, pt, pc);
+        if (new_cos > cthr && new_cos > old_cos) return true;
+      }
+    }
+    return false;
+  }
+
   void split_long_edges()
   {
     std::vector<halfedge_descriptor> cand;
+    std::size_t held = 0;
     for (int pass = 0; pass < 10; ++pass) {  // bounded: frozen long edges keep splitting their neighbours
       cand.clear();
       for (edge_descriptor e : edges(tm_)) {
@@ -317,11 +352,22 @@ public:
       }
       if (cand.empty()) break;
       // splits leave the other candidates' end points unchanged
+      std::size_t done = 0;
       for (halfedge_descriptor h : cand) {
         if (budget_spent()) return;
+        if (split_thins_a_frozen_side(h)) {
+          put(flag_, edge(h, tm_), char(get(flag_, edge(h, tm_)) | HELD));
+          ++held;
+          continue;
+        }
+        put(flag_, edge(h, tm_), char(get(flag_, edge(h, tm_)) & ~HELD));
         split(h);
+        ++done;
       }
+      if (done == 0) break;
     }
+    if (held != 0)
+      for (edge_descriptor e : edges(tm_)) put(flag_, e, char(get(flag_, e) & ~HELD));
   }
 
   // --------------------------------------------------------------- collapse
@@ -884,10 +930,16 @@ public:
       vis.start_phase("split");
       split_long_edges();
       vis.end_phase("split");
+#ifdef MREPAIR_REMESH_DEBUG
+      debug_report(it, "split");
+#endif
       if (vis.stop_requested()) return Status::cancelled;
       vis.start_phase("collapse");
       collapse_short_edges();
       vis.end_phase("collapse");
+#ifdef MREPAIR_REMESH_DEBUG
+      debug_report(it, "collapse");
+#endif
       if (vis.stop_requested()) return Status::cancelled;
       if (budget_spent()) {
         // the last relaxation puts the vertices back on the input surface
@@ -897,21 +949,42 @@ public:
       vis.start_phase("flip");
       flip_edges();
       vis.end_phase("flip");
+#ifdef MREPAIR_REMESH_DEBUG
+      debug_report(it, "flip");
+#endif
       if (vis.stop_requested()) return Status::cancelled;
       vis.start_phase("relax");
       relax_and_project(project);
       vis.end_phase("relax");
+#ifdef MREPAIR_REMESH_DEBUG
+      debug_report(it, "relax");
+#endif
       vis.start_phase("cleanup");
       fix_bad_triangles(bad_angle_);
       // the cleanup's flips and collapses come after the last relaxation
       if (it + 1 == iterations) optimize_bad_vertices(30., project, 4);
       vis.end_phase("cleanup");
+#ifdef MREPAIR_REMESH_DEBUG
+      debug_report(it, "cleanup");
+#endif
       ++counters.iterations;
       vis.progress(double(it + 1) / double(iterations));
     }
     return Status::ok;
   }
 
+#ifdef MREPAIR_REMESH_DEBUG
+  void debug_report(int it, const char* phase) const
+  {
+    double worst = -1; std::size_t nf = 0, bad = 0;
+    for (face_descriptor f : faces(tm_)) {
+      halfedge_descriptor h = halfedge(f, tm_);
+      double c = min_angle_cos(get(pos_, source(h, tm_)), get(pos_, target(h, tm_)), get(pos_, target(next(h, tm_), tm_)));
+      worst = std::max(worst, c); ++nf; if (c > std::cos(5 * CGAL_PI / 180)) ++bad;
+    }
+    std::fprintf(stderr, "it %d %-8s faces %zu min %.3f deg, <5deg %zu\n", it, phase, nf, std::acos(std::min(1., worst)) * 180 / CGAL_PI, bad);
+  }
+#endif
   /// writes positions back to the vertex point map (only where they changed).
   void write_back()
   {
