@@ -5,6 +5,7 @@
 #include "fixtures.h"
 
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/boost/graph/helpers.h>
 
 #include <gtest/gtest.h>
@@ -684,3 +685,48 @@ TEST(Close_gaps_cli, closes_a_file_and_refuses_bad_input)
   EXPECT_NE(std::system(no_tol.c_str()), 0);
 }
 #endif
+
+// A narrow slit left open is bridged with Liepa's triangles, nothing moved.
+// A bridge that would pass through a clean stretch of the surface (here a
+// thin closed box standing in the slit, touching neither side) is taken
+// back and the slit stays open; without the box the same slit is bridged.
+TYPED_TEST(Close_gaps, bridge_through_a_clean_surface_is_taken_back)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const double w = 0.004;  // the slit's width
+  // a strip over [0,1] x [-0.2,0.2] with a slit from x = 0.2 to 0.8 along y = 0
+  Soup strip;
+  const double ys[6] = {-0.2, -0.1, -w / 2, w / 2, 0.1, 0.2};
+  for (int j = 0; j < 6; ++j)
+    for (int i = 0; i <= 10; ++i) strip.points.emplace_back(0.1 * i, ys[j], 0.);
+  auto id = [](int i, int j) { return std::size_t(j * 11 + i); };
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 10; ++i) {
+      if (j == 2 && i >= 2 && i < 8) continue;  // the slit
+      strip.polygons.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      strip.polygons.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  Soup box = translated(cube(1.), 0., 0., 0.);
+  for (auto& p : box.points) p = Point(0.4 + 0.2 * p.x(), -w / 4 + 0.5 * w * p.y(), -0.1 + 0.2 * p.z());
+  for (bool with_box : {false, true}) {
+    Mesh m = to_mesh<Mesh>(with_box ? merged(strip, box) : strip);
+    const std::size_t faces_before = face_count(m);
+    auto vpm = get(CGAL::vertex_point, m);
+    mrepair::internal::Visitor_handle<CGAL::parameters::Default_named_parameters> quiet(
+        CGAL::parameters::default_values());
+    mrepair::Gap_closing_result r;
+    mrepair::internal::bridge_narrow_loops(m, vpm, 0.02, 100, quiet, r);
+    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+    if (with_box) {
+      EXPECT_EQ(r.loops_bridged, 0u);
+      EXPECT_EQ(r.bridges_rejected_intersecting, 1u);
+      EXPECT_EQ(face_count(m), faces_before);
+      EXPECT_FALSE(PMP::does_self_intersect(m));
+    } else {
+      EXPECT_EQ(r.loops_bridged, 1u);
+      EXPECT_EQ(r.bridges_rejected_intersecting, 0u);
+      EXPECT_EQ(face_count(m), faces_before + r.bridge_faces);
+      EXPECT_GT(r.bridge_faces, 10u);
+    }
+  }
+}

@@ -69,6 +69,7 @@ struct Gap_closing_result
   std::size_t pinched_vertices_split = 0;    ///< vertices created by splitting pinched vertices
   std::size_t loops_bridged = 0;             ///< narrow loops left by the contractions, filled (nothing moved)
   std::size_t bridge_faces = 0;              ///< faces added by those bridges
+  std::size_t bridges_rejected_intersecting = 0;  ///< bridges taken back: they passed through a clean stretch of the surface
   double max_displacement = 0;               ///< largest distance a vertex moved from its input position
   double final_distance = 0;                 ///< error level of the last applied contraction
 
@@ -97,6 +98,7 @@ struct Gap_closing_result
     r.add("pinched_vertices_split", pinched_vertices_split);
     r.add("loops_bridged", loops_bridged);
     r.add("bridge_faces", bridge_faces);
+    r.add("bridges_rejected_intersecting", bridges_rejected_intersecting);
     r.add("max_displacement", max_displacement);
     r.add("final_distance", final_distance);
   }

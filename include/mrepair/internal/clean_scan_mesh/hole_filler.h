@@ -7,9 +7,9 @@
 
 #include <mrepair/cleaning_results.h>
 #include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
-#include <mrepair/internal/clean_scan_mesh/patch_guard.h>
 #include <mrepair/internal/clean_scan_mesh/safety.h>
 #include <mrepair/internal/local_operations.h>
+#include <mrepair/internal/patch_guard.h>
 #include <mrepair/internal/remesh/driver.h>
 #include <mrepair/status.h>
 #include <mrepair/visitors.h>

@@ -1,6 +1,6 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
-// The hole filler's check that a patch touches the surface only along its
-// loop: a cap that passes through the rest of the model (the bottom of a
+// The check that a patch filling a border loop (a hole filler's cap, a gap
+// closer's bridge) touches the surface only along its loop: a cap that passes through the rest of the model (the bottom of a
 // teapot through its body, a slit's fill over faces that already overlap)
 // would add the self-intersections the repair is meant to remove, so such a
 // fill is taken back like a failed triangulation.
@@ -14,8 +14,8 @@
 // filled, the faces whose box meets the loop's box; a patch is tested against
 // those, against the patches accepted since, and against itself. A patch that
 // leaves its loop's box (fairing can bulge) is tested against every face.
-#ifndef MREPAIR_INTERNAL_CLEAN_SCAN_MESH_PATCH_GUARD_H
-#define MREPAIR_INTERNAL_CLEAN_SCAN_MESH_PATCH_GUARD_H
+#ifndef MREPAIR_INTERNAL_PATCH_GUARD_H
+#define MREPAIR_INTERNAL_PATCH_GUARD_H
 
 #include <mrepair/internal/triangle_intersection.h>
 #include <mrepair/internal/utility.h>
@@ -36,7 +36,6 @@
 
 namespace mrepair {
 namespace internal {
-namespace clean_pipeline {
 
 template <typename PM, typename VPM>
 class Patch_intersection_guard
@@ -262,7 +261,10 @@ public:
 
   /// whether the faces of `patch`, filling prepared loop `i`, meet the
   /// rest of the surface or each other other than along what they share.
-  bool patch_intersects(std::size_t i, const std::vector<face_descriptor>& patch)
+  /// Faces in `tolerated` (when given) may be met; with `test_itself`
+  /// false, so may the patch's own faces.
+  bool patch_intersects(std::size_t i, const std::vector<face_descriptor>& patch,
+                        const std::set<face_descriptor>* tolerated = nullptr, bool test_itself = true)
   {
     std::vector<Tri> tris;
     tris.reserve(patch.size());
@@ -276,7 +278,7 @@ public:
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
     std::sort(order.begin(), order.end(),
               [&](std::size_t a, std::size_t b) { return tris[a].box.lo[0] < tris[b].box.lo[0]; });
-    for (std::size_t a = 0; a < order.size(); ++a)
+    for (std::size_t a = 0; test_itself && a < order.size(); ++a)
       for (std::size_t b = a + 1; b < order.size(); ++b) {
         if (tris[order[b]].box.lo[0] > tris[order[a]].box.hi[0]) break;
         if (meet(tris[order[a]], tris[order[b]])) return true;
@@ -297,7 +299,7 @@ public:
     std::vector<face_descriptor> met;
     std::vector<Tri> met_tris;
     for (face_descriptor g : candidates) {
-      if (own.count(g) || !pb.meets(face_box(g))) continue;
+      if (own.count(g) || (tolerated && tolerated->count(g)) || !pb.meets(face_box(g))) continue;
       const Tri t = read(g);
       for (const Tri& p : tris) {
         if (meet(p, t)) {
@@ -355,8 +357,7 @@ public:
   }
 };
 
-}  // namespace clean_pipeline
 }  // namespace internal
 }  // namespace mrepair
 
-#endif  // MREPAIR_INTERNAL_CLEAN_SCAN_MESH_PATCH_GUARD_H
+#endif  // MREPAIR_INTERNAL_PATCH_GUARD_H
