@@ -648,7 +648,7 @@ TYPED_TEST(Invariants, RandomSoupsThroughEveryCall)
         if (mrepair::succeeded(r.status)) {
           EXPECT_EQ(f0 - r.enlargement_faces_removed + r.faces_added, nfaces(m)) << ctx;
           EXPECT_LE(points_not_in_input(m, in), r.vertices_added) << ctx;
-          // midpoints and centroids of the patch; fairing may leave the box
+          // on Liepa's patch, inside the loop's box; fairing may leave it
           if (!fair) { EXPECT_EQ(points_outside(m, in), 0u) << ctx; }
         }
         return r.status;

@@ -68,7 +68,8 @@ namespace mrepair {
 /// `open_holes` with reason "non_finite"). Existing vertices never move;
 /// unless the patch is faired, patch vertices lie on Liepa's patch, inside
 /// the bounding box of the loop. A remeshed patch with a degenerate or
-/// self-intersecting face is dropped and Liepa's patch stays. Faces are removed only by enlargements, so always
+/// self-intersecting face is dropped and Liepa's patch stays. Faces are
+/// removed only by enlargements, so always
 /// faces after = faces before - `enlargement_faces_removed` + `faces_added`.
 /// Holes at or above the limit are never filled: the paper only polishes
 /// large holes (`clean_boundaries()`) and leaves completion to other tools.

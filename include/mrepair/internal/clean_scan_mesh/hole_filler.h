@@ -18,7 +18,6 @@
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
 #include <CGAL/Polygon_mesh_processing/fair.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
@@ -289,13 +288,11 @@ public:
         s, static_cast<const std::vector<Small_face>*>(nullptr), Remesh_mode::uniform, L, options,
         s.points(), No_constraint(), No_fixed(), quiet, start_remeshing_result(s, Remesh_mode::uniform));
     if (!succeeded(r.status)) return;
-    // The remesher can fold a dense patch along a protected border much
-    // coarser than the target (a flat square loop of edges 4 L, 5 or more
-    // iterations): a remeshed patch with a degenerate or crossing face is
-    // dropped and Liepa's patch stays.
+    // A remeshed patch with a degenerate face is dropped and Liepa's patch
+    // stays. One that crosses itself is caught by the patch guard after the
+    // insertion, which puts Liepa's patch back.
     for (Small_face f : s.faces())
       if (CGAL::Polygon_mesh_processing::is_degenerate_triangle_face(f, s)) return;
-    if (CGAL::Polygon_mesh_processing::does_self_intersect(s)) return;
     // `s` was compacted: corner indices moved with their vertices
     std::vector<vertex_descriptor> corner_of(s.number_of_vertices(), GT::null_vertex());
     std::vector<Vec3> positions(s.number_of_vertices());
