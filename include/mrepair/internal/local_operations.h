@@ -384,6 +384,24 @@ public:
     return true;
   }
 
+  using Triangle = std::array<vertex_descriptor, 3>;
+
+  /// the vertices of triangles `fs`, in face order (what `insert_triangles`
+  /// takes to put them back after `remove_patch`).
+  std::vector<Triangle> triangles_of(const std::vector<face_descriptor>& fs) const
+  {
+    std::vector<Triangle> ts;
+    ts.reserve(fs.size());
+    for (face_descriptor f : fs) {
+      Triangle t;
+      int k = 0;
+      for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_))
+        if (k < 3) t[k++] = v;
+      ts.push_back(t);
+    }
+    return ts;
+  }
+
   /// replaces `patch` (faces this object inserted into one border loop, with
   /// no vertex of their own) by `triangles`, indices into `corners`: a corner
   /// that is a vertex of the loop is given there, a new one is null there and
@@ -396,7 +414,6 @@ public:
                      const std::vector<std::array<std::size_t, 3>>& triangles,
                      std::vector<vertex_descriptor>& created)
   {
-    using Triangle = std::array<vertex_descriptor, 3>;
     // an inner edge (two triangles) between two loop vertices must not exist
     // outside the old patch: the new face would go in on another border
     {
@@ -413,15 +430,7 @@ public:
           if (is_border(g, pm_) || !old_faces.count(face(g, pm_))) return false;
       }
     }
-    std::vector<Triangle> old_triangles;
-    old_triangles.reserve(patch.size());
-    for (face_descriptor f : patch) {
-      Triangle t;
-      int k = 0;
-      for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_))
-        if (k < 3) t[k++] = v;
-      old_triangles.push_back(t);
-    }
+    const std::vector<Triangle> old_triangles = triangles_of(patch);
     remove_patch(patch);
     patch.clear();
     created.clear();

@@ -169,7 +169,7 @@ public:
       if (!is_finite_point(vpm_, target(g, pm_))) return false;
       lsum += norm(sub(point(vpm_, target(g, pm_)), point(vpm_, source(g, pm_))));
     }
-    return ops_.insert_patch(h, [&](Operations& patch_ops, std::vector<vertex_descriptor>& loop,
+    return ops_.insert_patch(h, [&](Operations& patch_ops, std::vector<vertex_descriptor>& /*loop*/,
                                     std::vector<vertex_descriptor>& added) {
       std::vector<face_descriptor> patch;
       patch.reserve(2 * n);
@@ -181,8 +181,8 @@ public:
           CGAL::parameters::vertex_point_map(vpm_).use_delaunay_triangulation(n > delaunay_above_));
       if (patch.empty()) return false;
       // Liepa's patch, kept to fall back on when the refined one crosses
-      const std::vector<vertex_descriptor> loop_before = loop;
-      const std::vector<std::array<vertex_descriptor, 3>> coarse = triangles_of(patch);
+      // (the remesher keeps the loop's vertices, so its triangles go back as they are)
+      const std::vector<std::array<vertex_descriptor, 3>> coarse = patch_ops.triangles_of(patch);
       if (refine_ && n > 3) refine(patch_ops, patch, density_ * lsum / double(n), added);
       // Fairing reads the 2-ring of the patch vertices with exact predicates,
       // which fail on NaN: skip it next to a non-finite vertex.
@@ -194,9 +194,8 @@ public:
         added.clear();
         patch.clear();
         // A refinement or fairing can fold where Liepa's patch did not: put
-        // the coarse patch back (its loop vertices as the refinement left
-        // them) and keep it when it crosses nothing.
-        if (!refined || !put_back(patch_ops, coarse, loop_before, loop, patch) ||
+        // the coarse patch back and keep it when it crosses nothing.
+        if (!refined || !patch_ops.insert_triangles(coarse, patch) ||
             guard_.patch_intersects(index, patch)) {
           if (!patch.empty()) patch_ops.remove_patch(patch);
           ++result.fills_rejected_intersecting;
@@ -209,33 +208,6 @@ public:
       result.vertices_added += added.size();
       return true;
     });
-  }
-
-  std::vector<std::array<vertex_descriptor, 3>> triangles_of(const std::vector<face_descriptor>& fs) const
-  {
-    std::vector<std::array<vertex_descriptor, 3>> ts;
-    for (face_descriptor f : fs) {
-      std::array<vertex_descriptor, 3> t;
-      int k = 0;
-      for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_))
-        if (k < 3) t[k++] = v;
-      ts.push_back(t);
-    }
-    return ts;
-  }
-
-  // Re-inserts Liepa's triangles `coarse` into the loop; a loop vertex the
-  // refinement replaced (loop_before[i] -> loop[i], same position) is mapped.
-  bool put_back(Operations& patch_ops, std::vector<std::array<vertex_descriptor, 3>> coarse,
-                const std::vector<vertex_descriptor>& loop_before,
-                const std::vector<vertex_descriptor>& loop, std::vector<face_descriptor>& patch)
-  {
-    for (auto& t : coarse)
-      for (vertex_descriptor& v : t) {
-        const auto it = std::find(loop_before.begin(), loop_before.end(), v);
-        if (it != loop_before.end()) v = loop[std::size_t(it - loop_before.begin())];
-      }
-    return patch_ops.insert_triangles(coarse, patch);
   }
 
   // Refines the patch to edge length `L` with the library's own remesher
