@@ -640,6 +640,77 @@ TYPED_TEST(Scan_clean, micro_tunnel_is_removed)
   EXPECT_EQ(face_count(m), 118u);
 }
 
+// The spike tracker (spikes_impl.h) finds again, from the statistics'
+// journal, exactly the set a whole-mesh pass finds, in the same order, after
+// relaxation, removal of unrelaxable spikes (faces and vertices go), moves
+// and near-degenerate repair (collapses and flips), all through one
+// Local_operations. On Polyhedron_3 every call is a whole-mesh pass.
+TYPED_TEST(Scan_clean, spike_tracker_matches_whole_mesh_passes)
+{
+  using Mesh = typename TypeParam::Mesh;
+  namespace SCI = mrepair::internal::scan_clean;
+  Mesh m = to_mesh<Mesh>(grid(40, 40));
+  auto vpm = get(CGAL::vertex_point, m);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> noise(-0.3, 0.3);
+  std::size_t k = 0;
+  for (auto v : vertices(m)) {
+    const Point p = get(vpm, v);
+    double z = noise(rng);
+    if (++k % 97 == 0) z += 4.0;  // tall spikes, some next to the border
+    put(vpm, v, Point(p.x() + 0.2 * noise(rng), p.y(), z));
+  }
+  Stats<Mesh> st(m);
+  st.compute_all();
+  mrepair::internal::Local_operations<Mesh, decltype(vpm)> ops(m, vpm);
+  ops.keep_current(&st);
+  SCI::Spike_settings s;
+  std::string message;
+  ASSERT_TRUE(SCI::read_spike_settings(MP::spike_angle(60.0), s, message)) << message;
+  SCI::Spike_tracker<Mesh, decltype(vpm)> tracker(st);
+  auto same = [&](const char* when) {
+    std::size_t by_height_tracked = 0, by_height_whole = 0;
+    const auto tracked = tracker.collect(s, &by_height_tracked);
+    const auto whole = SCI::collect_spiked(st, s, &by_height_whole);
+    EXPECT_TRUE(tracked == whole) << when << ": " << tracked.size() << " vs " << whole.size();
+    EXPECT_EQ(by_height_tracked, by_height_whole) << when;
+    return whole.size();
+  };
+  EXPECT_GT(same("first pass"), 10u);
+  mrepair::Default_visitor vis;
+  const auto relaxed = SCI::relax_spikes_with(ops, st, s, vis, &tracker);
+  EXPECT_GT(relaxed.vertices_relaxed, 0u);
+  same("after relaxation");
+  // the noise itself is spiked at 60 degrees: stricter settings re-prime
+  SCI::Spike_settings strict = s;
+  strict.spike_angle = s.spike_angle / 2;
+  std::swap(s, strict);
+  same("other settings");
+  std::swap(s, strict);
+  same("settings back");
+  const auto removed = SCI::remove_unrelaxable_spikes_with(ops, st, s, vis, &tracker);
+  same("after removal");
+  std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor> vs(vertices(m).begin(),
+                                                                         vertices(m).end());
+  for (int i = 0; i < 150; ++i) {
+    const auto v = vs[rng() % vs.size()];
+    const Point p = get(vpm, v);
+    ops.move_vertex(v, {{p.x(), p.y(), p.z() + 10 * noise(rng)}});
+  }
+  same("after moves");
+  SCI::Near_degenerate_settings nd;
+  ASSERT_TRUE(SCI::read_near_degenerate_settings(MP::default_values(), st.edge_count(), nd, message));
+  const auto fixed = SCI::repair_near_degenerate_faces_with(ops, st, nd, vis);
+  same("after near-degenerate repair");
+  const auto again = SCI::relax_spikes_with(ops, st, s, vis, &tracker);
+  same("after a second relaxation");
+  EXPECT_GT(removed.faces_removed + fixed.edges_collapsed + fixed.edges_flipped +
+                again.vertices_relaxed,
+            0u);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(stats_equal_fresh(m, st));
+}
+
 TYPED_TEST(Scan_clean, bad_input)
 {
   using Mesh = typename TypeParam::Mesh;

@@ -353,7 +353,11 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
     return finish(Status::non_finite_input, internal::coordinates_too_large_message);
 
   // The input kind decides which steps run, unless the caller chose them.
-  r.profile = classify_input(pmesh, MP::input_profile(asked, CGAL::parameters::vertex_point_map(vpm)));
+  const Input_classification* known = internal::get_or(
+      np, internal_np::input_classification, static_cast<const Input_classification*>(nullptr));
+  r.profile = known && asked == Input_profile::automatic
+                  ? *known
+                  : classify_input(pmesh, MP::input_profile(asked, CGAL::parameters::vertex_point_map(vpm)));
   const bool cad = r.profile.profile == Input_profile::cad;
   if (!steps_given) mask = cad ? unsigned(clean_steps_cad) : unsigned(clean_step_all);
   // CAD holes can be long loops around a flat cut; Liepa's triangulation

@@ -116,10 +116,21 @@ public:
   // Fixes what it can; the faces left are counted by the caller once the
   // duplicate faces are gone too (a pillow flattened by an earlier step is
   // degenerate, and goes as a duplicate pair).
+  // the degenerate faces, found in parallel (reads only: safe on any mesh)
+  std::vector<face_descriptor> degenerate_faces() const
+  {
+    const std::vector<face_descriptor> fs(faces(pm_).begin(), faces(pm_).end());
+    std::vector<unsigned char> bad(fs.size(), 0);
+    parallel_for_index(fs.size(), 8192, [&](std::size_t i) { bad[i] = degenerate(fs[i]); });
+    std::vector<face_descriptor> out;
+    for (std::size_t i = 0; i < fs.size(); ++i)
+      if (bad[i]) out.push_back(fs[i]);
+    return out;
+  }
+
   void run(std::size_t cap)
   {
-    for (face_descriptor f : faces(pm_))
-      if (degenerate(f)) queue_.insert(f);
+    for (face_descriptor f : degenerate_faces()) queue_.insert(f);
     r.degenerate_faces_found = queue_.size();
     const std::size_t budget = cap ? cap : 10 * queue_.size() + 1000;
     std::set<face_descriptor> stuck;
@@ -356,18 +367,23 @@ Validity_result ensure_valid_mesh(PolygonMesh& pmesh,
     for (vertex_descriptor v : vertices(pmesh)) put(index, v, i++);
     // sorted keys, not a map: a linear scan after one sort (1M faces: a
     // tenth of the map's time)
-    std::vector<std::pair<std::array<std::size_t, 3>, face_descriptor>> keys;
-    keys.reserve(internal::face_count(pmesh));
-    for (face_descriptor f : faces(pmesh)) {
+    using Key = std::pair<std::array<std::size_t, 3>, face_descriptor>;
+    const std::vector<face_descriptor> fs(faces(pmesh).begin(), faces(pmesh).end());
+    std::vector<Key> keys(fs.size());
+    // reads of the index map: in parallel where it is an array
+    internal::parallel_for_mesh_elements<PolygonMesh>(fs.size(), [&](std::size_t i) {
       std::array<std::size_t, 3> key{};
       int k = 0;
-      for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pmesh), pmesh))
+      for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(fs[i], pmesh), pmesh))
         if (k < 3) key[k++] = get(index, v);
       std::sort(key.begin(), key.end());
-      keys.emplace_back(key, f);
-    }
-    std::sort(keys.begin(), keys.end(),
-              [](const auto& x, const auto& y) { return x.first < y.first; });
+      keys[i] = Key(key, fs[i]);
+    });
+    // the face breaks ties: the order, hence which duplicate goes, does not
+    // depend on the threads
+    internal::parallel_sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
+      return x.first != y.first ? x.first < y.first : x.second < y.second;
+    });
     std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
     for (std::size_t k = 1; k < keys.size(); ++k)
       if (keys[k].first == keys[k - 1].first) pairs.emplace_back(keys[k - 1].second, keys[k].second);
@@ -397,8 +413,7 @@ Validity_result ensure_valid_mesh(PolygonMesh& pmesh,
       pmesh, CGAL::parameters::vertex_point_map(vpm));
 
   // faces left: those no local edit could fix and those the cap cut off
-  for (face_descriptor f : faces(pmesh))
-    if (fixer.degenerate(f)) ++r.degenerate_faces_left;
+  r.degenerate_faces_left = fixer.degenerate_faces().size();
 
   if (r.degenerate_faces_left > 0) {
     r.status = Status::partial;

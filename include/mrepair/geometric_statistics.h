@@ -128,6 +128,8 @@ private:
   std::vector<face_descriptor> sf_;
   std::vector<halfedge_descriptor> sh_;
   std::vector<vertex_descriptor> sv_;
+  // vertices recomputed by local updates, when a caller asked for them
+  std::vector<vertex_descriptor>* journal_ = nullptr;
 
 public:
   /// attaches (uninitialised) statistics to `tm`; call `compute_all()` next.
@@ -150,6 +152,13 @@ public:
   /// shared 2-core machine (load 7-10) TBB gave no wall-time gain (0.64-0.90 s
   /// sequential, 0.78-0.83 s parallel), so the gain on an idle machine is unmeasured.
   void set_parallel(bool p) { parallel_ = p; }
+
+  /// from now on, the local updates append to `*journal` every vertex whose
+  /// statistics they recompute (with repeats; possibly vertices removed
+  /// later): a vertex whose 1-ring changed in any way is among them, so a
+  /// test that reads only a vertex's 1-ring need run again on these alone.
+  /// `nullptr` stops the journal; `compute_all()` does not write to it.
+  void set_journal(std::vector<vertex_descriptor>* journal) { journal_ = journal; }
 
   /// computes every statistic: faces (area, normal, corner angles,
   /// min angle), then edges (length, dihedral, which needs both normals), then
@@ -267,6 +276,7 @@ public:
     for (vertex_descriptor v : touched) {
       if (halfedge(v, *tm_) == GT::null_halfedge()) {
         compute_vertex(v);
+        if (journal_) journal_->push_back(v);
         continue;
       }
       for (halfedge_descriptor h : CGAL::halfedges_around_target(v, *tm_)) {
@@ -295,6 +305,7 @@ public:
       }
     for (halfedge_descriptor h : sh_) compute_edge(h);
     for (vertex_descriptor v : sv_) compute_vertex(v);
+    if (journal_) journal_->insert(journal_->end(), sv_.begin(), sv_.end());
   }
 
   /// before moving `v`.

@@ -248,9 +248,16 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   // CAD exports and print models (their seams are what gap closing is for; a
   // scan's holes are not gaps).
   bool automatic = false;
-  if (!(gap > 0.) && options.automatic_gap_tolerance)
-    automatic = classify_input(out, MP::input_profile(options.profile)).profile == Input_profile::cad;
+  // the cleaning reuses the classification while the mesh is unchanged
+  Input_classification classification;
+  bool classified = false;
+  if (!(gap > 0.) && options.automatic_gap_tolerance) {
+    classification = classify_input(out, MP::input_profile(options.profile));
+    classified = true;
+    automatic = classification.profile == Input_profile::cad;
+  }
   if (gap > 0. || automatic) {
+    classified = false;
     stage_clock.restart();
     Gap_closing_result g;
     const std::size_t f0 = internal::face_count(out);
@@ -273,11 +280,14 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
 
   // 3. The cleaning pipeline, with the steps of the input's profile.
   auto clean = [&](const auto& np_hole) {
+    const Input_classification* known = classified ? &classification : nullptr;
     return clean_scan_mesh(
         out, MP::min_component_faces(
                  comp_n, MP::max_clean_iterations(
                              options.max_clean_iterations,
-                             MP::spike_angle(spike, MP::input_profile(options.profile, np_hole))))
+                             MP::spike_angle(spike, MP::input_profile(
+                                                        options.profile,
+                                                        MP::input_classification(known, np_hole)))))
                  .visitor(std::ref(visitor.get())));
   };
   // without a hole limit the profile picks it

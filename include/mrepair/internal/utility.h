@@ -17,6 +17,7 @@
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 #endif
 
 #include <algorithm>
@@ -132,6 +133,18 @@ std::size_t vertex_count(const Mesh& m)
     return static_cast<std::size_t>(vertices(m).size());
 }
 
+/// true when `v` was removed from `m`: only `Surface_mesh` keeps removed
+/// elements addressable (marked, until garbage collection), so this is
+/// false on other meshes, where callers must not hold removed descriptors.
+template <typename Mesh>
+bool is_removed_vertex(const Mesh& m, typename boost::graph_traits<Mesh>::vertex_descriptor v)
+{
+  if constexpr (Is_surface_mesh<Mesh>::value)
+    return m.is_removed(v);
+  else
+    return false;
+}
+
 // ---- parallel loops ----------------------------------------------------------
 /// calls f(i) for i in [0, n), with TBB when it is linked and the range holds
 /// more than one grain.
@@ -148,6 +161,19 @@ void parallel_for_index(std::size_t n, std::size_t grain, const F& f)
   }
 #endif
   for (std::size_t i = 0; i < n; ++i) f(i);
+}
+
+/// sorts [first, last) with TBB when there is one. `less` must be a strict
+/// total order on the values that can occur (ties would go either way,
+/// depending on the threads).
+template <typename RandomIt, typename Less>
+void parallel_sort(RandomIt first, RandomIt last, const Less& less)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  tbb::parallel_sort(first, last, less);
+#else
+  std::sort(first, last, less);
+#endif
 }
 
 /// the same loop over work that writes a dynamic property map of `Mesh`: in

@@ -44,6 +44,9 @@ class Spike_steps
   PM& pm_;
   scan_clean::Spike_settings spike_settings_;
   std::unique_ptr<Stats> stats_;
+  // the spiked vertices, found again from the statistics' journal (declared
+  // after stats_: goes first, and detaches the journal)
+  std::unique_ptr<scan_clean::Spike_tracker<PM, VPM>> tracker_;
 
   Stats& stats()
   {
@@ -51,6 +54,7 @@ class Spike_steps
       stats_.reset(new Stats(pm_, ops_.vertex_point_map()));
       stats_->compute_all();
       ops_.keep_current(stats_.get());
+      tracker_.reset(new scan_clean::Spike_tracker<PM, VPM>(*stats_));
     }
     return *stats_;
   }
@@ -77,7 +81,8 @@ public:
   Step_outcome relax(Visitor& vis)
   {
     Step_outcome o;
-    Spike_relaxation_result r = scan_clean::relax_spikes_with(ops_, stats(), spike_settings_, vis);
+    Spike_relaxation_result r =
+        scan_clean::relax_spikes_with(ops_, stats(), spike_settings_, vis, tracker_.get());
     o.status = r.status;
     o.changes = r.vertices_relaxed;
     r.to_report(o.report);
@@ -89,7 +94,7 @@ public:
   {
     Step_outcome o;
     Spike_removal_result r =
-        scan_clean::remove_unrelaxable_spikes_with(ops_, stats(), spike_settings_, vis);
+        scan_clean::remove_unrelaxable_spikes_with(ops_, stats(), spike_settings_, vis, tracker_.get());
     o.status = r.status;
     o.changes = r.faces_removed + r.dangling_faces_removed;
     o.faces_removed = r.faces_removed + r.dangling_faces_removed;

@@ -116,6 +116,94 @@ std::size_t count_spiked(const Geometric_statistics<Mesh, VPM>& st, const Spike_
   return collect_spiked(st, s, by_height_only).size();
 }
 
+// The spiked vertices of a mesh whose statistics are kept current, found
+// again after local edits by testing only the vertices those edits touched:
+// a vertex's spike status reads its 1-ring alone, and the statistics'
+// journal lists every vertex whose 1-ring changed (set_journal), so the set
+// is the same as a whole-mesh pass gives, in the same (index) order. The
+// pipeline looks for spikes four times an iteration; on a noisy 1M-face scan
+// the whole-mesh passes were the cleaning's largest cost (13% of the job's
+// CPU time). Removed vertices are told apart by `Surface_mesh::is_removed`;
+// on other meshes every call is a whole-mesh pass.
+template <typename Mesh, typename VPM>
+class Spike_tracker
+{
+  using vertex_descriptor = typename boost::graph_traits<Mesh>::vertex_descriptor;
+  using Stats = Geometric_statistics<Mesh, VPM>;
+  static constexpr bool incremental = Is_surface_mesh<Mesh>::value;
+  Stats& st_;
+  bool primed_ = false;
+  double angle_ = 0., height_ = 0.;  // the settings the set was found with
+  std::vector<vertex_descriptor> spiked_, journal_;
+  std::vector<unsigned char> by_height_;  // parallel to spiked_
+
+public:
+  explicit Spike_tracker(Stats& st) : st_(st) {}
+  Spike_tracker(const Spike_tracker&) = delete;
+  Spike_tracker& operator=(const Spike_tracker&) = delete;
+  ~Spike_tracker() { st_.set_journal(nullptr); }
+
+  std::vector<vertex_descriptor> collect(const Spike_settings& s, std::size_t* by_height_only = nullptr)
+  {
+    if (!incremental || !primed_ || s.spike_angle != angle_ || s.height_factor != height_)
+      prime(s);
+    else
+      update(s);
+    if (by_height_only)
+      *by_height_only = static_cast<std::size_t>(std::count(by_height_.begin(), by_height_.end(), 1));
+    return spiked_;
+  }
+
+private:
+  void prime(const Spike_settings& s)
+  {
+    spiked_ = collect_spiked(st_, s);
+    Spike_detector<Mesh, VPM> det(st_, s);
+    by_height_.assign(spiked_.size(), 0);
+    for (std::size_t i = 0; i < spiked_.size(); ++i) by_height_[i] = !det.by_dihedral(spiked_[i]);
+    angle_ = s.spike_angle;
+    height_ = s.height_factor;
+    journal_.clear();
+    if (incremental) st_.set_journal(&journal_);
+    primed_ = true;
+  }
+
+  // candidates: the vertices spiked last time and those touched since
+  void update(const Spike_settings& s)
+  {
+    const Mesh& m = st_.mesh();
+    journal_.insert(journal_.end(), spiked_.begin(), spiked_.end());
+    std::sort(journal_.begin(), journal_.end());
+    journal_.erase(std::unique(journal_.begin(), journal_.end()), journal_.end());
+    journal_.erase(std::remove_if(journal_.begin(), journal_.end(),
+                                  [&](vertex_descriptor v) { return is_removed_vertex(m, v); }),
+                   journal_.end());
+    std::vector<unsigned char> flag(journal_.size(), 0);
+    Spike_detector<Mesh, VPM> det(st_, s);
+    parallel_for_mesh_elements<Mesh>(journal_.size(), [&](std::size_t i) {
+      if (det.by_dihedral(journal_[i])) flag[i] = 1;
+      else if (det.by_height(journal_[i])) flag[i] = 2;
+    });
+    spiked_.clear();
+    by_height_.clear();
+    for (std::size_t i = 0; i < journal_.size(); ++i)
+      if (flag[i]) {
+        spiked_.push_back(journal_[i]);
+        by_height_.push_back(flag[i] == 2);
+      }
+    journal_.clear();
+  }
+};
+
+// Whole-mesh passes without a tracker, the tracker's when there is one.
+template <typename Mesh, typename VPM>
+std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>
+find_spiked(const Geometric_statistics<Mesh, VPM>& st, Spike_tracker<Mesh, VPM>* tracker,
+            const Spike_settings& s, std::size_t* by_height_only = nullptr)
+{
+  return tracker ? tracker->collect(s, by_height_only) : collect_spiked(st, s, by_height_only);
+}
+
 template <typename Mesh, typename VPM, typename VisitorHandle>
 class Spike_relaxer
 {
@@ -378,10 +466,11 @@ private:
 template <typename Mesh, typename VPM, typename VisitorHandle>
 Spike_relaxation_result relax_spikes_with(Local_operations<Mesh, VPM>& ops,
                                           Geometric_statistics<Mesh, VPM>& st,
-                                          const Spike_settings& s, VisitorHandle& vis)
+                                          const Spike_settings& s, VisitorHandle& vis,
+                                          Spike_tracker<Mesh, VPM>* tracker = nullptr)
 {
   Spike_relaxation_result r;
-  auto S = collect_spiked(st, s, &r.spiked_by_height_before);
+  auto S = find_spiked(st, tracker, s, &r.spiked_by_height_before);
   r.spiked_vertices_before = S.size();
   std::size_t in_region_before = 0;
   bool cancelled = false;
@@ -397,7 +486,7 @@ Spike_relaxation_result relax_spikes_with(Local_operations<Mesh, VPM>& ops,
   if (s.rings >= 2)
     r.spiked_vertices_after = r.spiked_vertices_before - in_region_before + r.spiked_in_region_after;
   else
-    r.spiked_vertices_after = count_spiked(st, s);
+    r.spiked_vertices_after = find_spiked(st, tracker, s).size();
   if (cancelled) {
     r.status = Status::cancelled;
     r.message = "cancelled by the visitor";
@@ -412,7 +501,8 @@ Spike_relaxation_result relax_spikes_with(Local_operations<Mesh, VPM>& ops,
 template <typename Mesh, typename VPM, typename VisitorHandle>
 Spike_removal_result remove_unrelaxable_spikes_with(Local_operations<Mesh, VPM>& ops,
                                                     Geometric_statistics<Mesh, VPM>& st,
-                                                    const Spike_settings& s, VisitorHandle& vis)
+                                                    const Spike_settings& s, VisitorHandle& vis,
+                                                    Spike_tracker<Mesh, VPM>* tracker = nullptr)
 {
   Spike_removal_result r;
   if (vis.stop_requested()) {
@@ -420,13 +510,13 @@ Spike_removal_result remove_unrelaxable_spikes_with(Local_operations<Mesh, VPM>&
     r.message = "cancelled by the visitor";
     return r;
   }
-  auto S = collect_spiked(st, s);
+  auto S = find_spiked(st, tracker, s);
   if (!S.empty()) {
     Spike_remover<Mesh, VPM> worker(ops, st, s, r);
     worker.run(S);
   }
   r.spiked_vertices_found = S.size();
-  r.spiked_vertices_after = count_spiked(st, s);
+  r.spiked_vertices_after = find_spiked(st, tracker, s).size();
   if (r.spiked_vertices_after > 0) r.status = Status::partial;
   vis.progress(1.0);
   return r;
