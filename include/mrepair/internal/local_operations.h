@@ -495,6 +495,33 @@ public:
   {
     std::vector<vertex_descriptor> loop;
     for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_)) loop.push_back(target(g, pm_));
+    const bool done = patch_edit(loop, build);
+    if (done) ++counts.patches_inserted;
+    return done;
+  }
+
+  /// edits a patch that `insert_patch` put into the loop `loop` (its
+  /// vertices) and that has no vertex of its own yet (Liepa's patch), through
+  /// the `Local_operations` given to `edit`, with the statistics updated once
+  /// as `insert_patch` does. `edit(patch_ops, loop, added)` returns false when
+  /// it took the patch back (the loop is a border again), true otherwise.
+  template <typename Edit>
+  bool edit_patch(std::vector<vertex_descriptor> loop, Edit&& edit)
+  {
+    const bool kept = patch_edit(loop, edit, true);
+    if (!kept && counts.patches_inserted > 0) --counts.patches_inserted;
+    return kept;
+  }
+
+private:
+  // The body of insert_patch and edit_patch: every edge that goes is between
+  // loop vertices (the patch has none of its own before), every new one
+  // touches the loop or the patch's new vertices.
+  // `inserted_here`: faces that go were counted as added by insert_patch,
+  // so a patch taken back cancels them (as within one insert_patch call)
+  template <typename Build>
+  bool patch_edit(std::vector<vertex_descriptor>& loop, Build& build, bool inserted_here = false)
+  {
     if (stats_) stats_->before_local_edit(loop);
     Local_operations patch_ops(pm_, vpm_);
     std::vector<vertex_descriptor> added;
@@ -504,11 +531,11 @@ public:
     const std::size_t faces_after = internal::face_count(pm_);
     const std::size_t vertices_after = internal::vertex_count(pm_);
     if (faces_after >= faces_before) counts.faces_added += faces_after - faces_before;
+    else if (inserted_here) counts.faces_added -= std::min(counts.faces_added, faces_before - faces_after);
     else counts.faces_removed += faces_before - faces_after;
     if (vertices_after >= vertices_before) counts.vertices_added += vertices_after - vertices_before;
     else counts.vertices_removed += vertices_before - vertices_after;
     counts.vertices_moved += patch_ops.counts.vertices_moved;
-    if (done) ++counts.patches_inserted;
     // `loop` may have been updated by `build` (a collapse that kept a new vertex)
     std::vector<vertex_descriptor> after = loop;
     after.insert(after.end(), added.begin(), added.end());
@@ -517,7 +544,6 @@ public:
     return done;
   }
 
-private:
   using Face_mark = typename boost::property_map<PM, CGAL::dynamic_face_property_t<char>>::type;
 
   void ensure_marks()

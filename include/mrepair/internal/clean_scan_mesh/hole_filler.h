@@ -67,6 +67,23 @@ public:
   /// remeshing iterations of a patch
   static constexpr int refine_iterations = 3;
 
+  // A patch remeshed off the mesh (remesh_patch): `triangles` index
+  // `corner_of` (a loop vertex, or null for a new vertex at `positions`).
+  struct Refined_patch
+  {
+    bool ok = false;
+    std::vector<vertex_descriptor> corner_of;
+    std::vector<Vec3> positions;
+    std::vector<std::array<std::size_t, 3>> triangles;
+    void swap_into(Refined_patch& o)
+    {
+      std::swap(ok, o.ok);
+      corner_of.swap(o.corner_of);
+      positions.swap(o.positions);
+      triangles.swap(o.triangles);
+    }
+  };
+
   Hole_filling_result result;
 
   Small_hole_filler(Operations& ops, std::size_t max_vertices, double density, bool refine,
@@ -157,6 +174,63 @@ public:
     return true;
   }
 
+  // Mean edge length of the loop of `h`, or false when a loop vertex is not finite.
+  bool loop_mean_length(halfedge_descriptor h, std::size_t n, double& mean) const
+  {
+    double lsum = 0.;
+    for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_)) {
+      if (!is_finite_point(vpm_, target(g, pm_))) return false;
+      lsum += norm(sub(point(vpm_, target(g, pm_)), point(vpm_, source(g, pm_))));
+    }
+    mean = lsum / double(n);
+    return true;
+  }
+
+  // Liepa's patch of the loop of `h` into `patch`: CGAL's implementation of
+  // Liepa's weight; existing edges between loop vertices and degenerate
+  // triangles are excluded, so an empty output is an aborted fill (3.5). The
+  // DT3 search space only pays on longer loops.
+  bool triangulate(halfedge_descriptor h, std::size_t n, std::vector<face_descriptor>& patch)
+  {
+    patch.reserve(2 * n);
+    CGAL::Polygon_mesh_processing::triangulate_hole(
+        pm_, h, std::back_inserter(patch),
+        CGAL::parameters::vertex_point_map(vpm_).use_delaunay_triangulation(n > delaunay_above_));
+    return !patch.empty();
+  }
+
+  // After the refinement: fairing, then the crossing test. A refined or
+  // faired patch that crosses the surface gives way to Liepa's patch
+  // (`coarse`), kept when it crosses nothing; false when the loop stays open.
+  bool finish_fill(Operations& patch_ops, std::vector<face_descriptor>& patch,
+                   const std::vector<std::array<vertex_descriptor, 3>>& coarse,
+                   std::vector<vertex_descriptor>& added, std::size_t index)
+  {
+    // Fairing reads the 2-ring of the patch vertices with exact predicates,
+    // which fail on NaN: skip it next to a non-finite vertex.
+    if (fair_ && !added.empty() && two_rings_are_finite(added))
+      CGAL::Polygon_mesh_processing::fair(pm_, added, CGAL::parameters::vertex_point_map(vpm_));
+    if (guard_.patch_intersects(index, patch)) {
+      patch_ops.remove_patch(patch);
+      const bool refined = !added.empty();
+      added.clear();
+      patch.clear();
+      // A refinement or fairing can fold where Liepa's patch did not: put
+      // the coarse patch back and keep it when it crosses nothing.
+      if (!refined || !patch_ops.insert_triangles(coarse, patch) ||
+          guard_.patch_intersects(index, patch)) {
+        if (!patch.empty()) patch_ops.remove_patch(patch);
+        ++result.fills_rejected_intersecting;
+        last_fill_intersected_ = true;
+        return false;
+      }
+    }
+    guard_.accept(patch);
+    result.faces_added += patch.size();
+    result.vertices_added += added.size();
+    return true;
+  }
+
   // Inserts the patch of the loop of `h` through the local operations:
   // Liepa's triangulation, then refinement and fairing of the new faces,
   // with the statistics updated once for the whole patch.
@@ -164,69 +238,89 @@ public:
   bool fill(halfedge_descriptor h, std::size_t n, std::size_t index)
   {
     last_fill_intersected_ = false;
-    double lsum = 0.;
-    for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_)) {
-      if (!is_finite_point(vpm_, target(g, pm_))) return false;
-      lsum += norm(sub(point(vpm_, target(g, pm_)), point(vpm_, source(g, pm_))));
-    }
+    double mean = 0.;
+    if (!loop_mean_length(h, n, mean)) return false;
     return ops_.insert_patch(h, [&](Operations& patch_ops, std::vector<vertex_descriptor>& /*loop*/,
                                     std::vector<vertex_descriptor>& added) {
       std::vector<face_descriptor> patch;
-      patch.reserve(2 * n);
-      // CGAL's implementation of Liepa's weight; existing edges between loop
-      // vertices and degenerate triangles are excluded, so an empty output is
-      // an aborted fill (3.5). The DT3 search space only pays on longer loops.
-      CGAL::Polygon_mesh_processing::triangulate_hole(
-          pm_, h, std::back_inserter(patch),
-          CGAL::parameters::vertex_point_map(vpm_).use_delaunay_triangulation(n > delaunay_above_));
-      if (patch.empty()) return false;
+      if (!triangulate(h, n, patch)) return false;
       // Liepa's patch, kept to fall back on when the refined one crosses
       // (the remesher keeps the loop's vertices, so its triangles go back as they are)
       const std::vector<std::array<vertex_descriptor, 3>> coarse = patch_ops.triangles_of(patch);
-      if (refine_ && n > 3) refine(patch_ops, patch, density_ * lsum / double(n), added);
-      // Fairing reads the 2-ring of the patch vertices with exact predicates,
-      // which fail on NaN: skip it next to a non-finite vertex.
-      if (fair_ && !added.empty() && two_rings_are_finite(added))
-        CGAL::Polygon_mesh_processing::fair(pm_, added, CGAL::parameters::vertex_point_map(vpm_));
-      if (guard_.patch_intersects(index, patch)) {
-        patch_ops.remove_patch(patch);
-        const bool refined = !added.empty();
-        added.clear();
-        patch.clear();
-        // A refinement or fairing can fold where Liepa's patch did not: put
-        // the coarse patch back and keep it when it crosses nothing.
-        if (!refined || !patch_ops.insert_triangles(coarse, patch) ||
-            guard_.patch_intersects(index, patch)) {
-          if (!patch.empty()) patch_ops.remove_patch(patch);
-          ++result.fills_rejected_intersecting;
-          last_fill_intersected_ = true;
-          return false;
-        }
-      }
-      guard_.accept(patch);
-      result.faces_added += patch.size();
-      result.vertices_added += added.size();
-      return true;
+      if (refine_ && n > 3) put_refined(patch_ops, patch, remesh_patch(patch, density_ * mean), added);
+      return finish_fill(patch_ops, patch, coarse, added, index);
     });
+  }
+
+  // A loop filled in a batch (fill_batch).
+  struct Batch_fill
+  {
+    std::size_t index = 0, n = 0;
+    halfedge_descriptor h;
+    double length = 0.;  // target edge length of the refinement
+    bool inserted = false;
+    std::vector<vertex_descriptor> loop;
+    std::vector<face_descriptor> patch;
+    std::vector<std::array<vertex_descriptor, 3>> coarse;
+    Refined_patch refined;
+  };
+
+  // Fills loops that passed the checks, in three passes with the result of
+  // filling them one by one: Liepa's patches, in list order; their
+  // remeshing, in parallel (each on its own copy, reading the mesh only);
+  // then, in list order, each refined patch put in place of Liepa's, faired
+  // and tested against the surface (finish_fill). The remeshing is most of a
+  // fill's time; the other passes edit the mesh and stay sequential.
+  void fill_batch(std::vector<Batch_fill>& batch, std::vector<halfedge_descriptor>& failed)
+  {
+    for (Batch_fill& b : batch) {
+      double mean = 0.;
+      if (!loop_mean_length(b.h, b.n, mean)) continue;
+      b.length = density_ * mean;
+      b.inserted = ops_.insert_patch(b.h, [&](Operations& patch_ops, std::vector<vertex_descriptor>& loop,
+                                              std::vector<vertex_descriptor>&) {
+        if (!triangulate(b.h, b.n, b.patch)) return false;
+        b.loop = loop;
+        b.coarse = patch_ops.triangles_of(b.patch);
+        return true;
+      });
+    }
+    // reads only: the mesh's connectivity and points, each job its own copy
+    parallel_for_index(batch.size(), 1, [&](std::size_t i) {
+      Batch_fill& b = batch[i];
+      if (refine_ && b.inserted && b.n > 3) b.refined = remesh_patch(b.patch, b.length);
+    });
+    for (Batch_fill& b : batch) {
+      last_fill_intersected_ = false;
+      bool filled = false;
+      if (b.inserted)
+        filled = ops_.edit_patch(b.loop, [&](Operations& patch_ops, std::vector<vertex_descriptor>&,
+                                             std::vector<vertex_descriptor>& added) {
+          put_refined(patch_ops, b.patch, b.refined, added);
+          return finish_fill(patch_ops, b.patch, b.coarse, added, b.index);
+        });
+      if (filled) ++result.holes_filled;
+      else fill_failed(b.h, failed);
+      Refined_patch().swap_into(b.refined);  // frees the copy
+    }
   }
 
   // Refines the patch to edge length `L` with the library's own remesher
   // (RameshCleaner 3.4: Liepa's patch, then isotropic remeshing of the
   // patch): the patch is copied into a small Surface_mesh whose border is the
   // loop, remeshed there with the border protected (the loop's edges and
-  // vertices stay) and projected onto Liepa's patch, then put back in place
-  // of the coarse patch through the local operations. The remesher sees the
-  // patch only, so a fill costs O(patch) however large the mesh. When the
-  // remeshed patch cannot go back (a new inner edge would join two loop
-  // vertices joined elsewhere), Liepa's patch stays.
-  void refine(Operations& patch_ops, std::vector<face_descriptor>& patch, double L,
-              std::vector<vertex_descriptor>& added)
+  // vertices stay) and projected onto Liepa's patch; put_refined puts it in
+  // place of the coarse patch through the local operations. The remesher
+  // sees the patch only, so a fill costs O(patch) however large the mesh.
+  // Reads the mesh only: patches are remeshed in parallel (fill_batch).
+  Refined_patch remesh_patch(const std::vector<face_descriptor>& patch, double L) const
   {
     using Small = CGAL::Surface_mesh<CGAL::Epick::Point_3>;
     using Small_vertex = typename Small::Vertex_index;
     using Small_face = typename Small::Face_index;
     constexpr std::size_t none = std::size_t(-1);
-    if (!(L > 0.)) return;
+    Refined_patch out;
+    if (!(L > 0.)) return out;
     Small s;
     auto corner_index = s.add_property_map<Small_vertex, std::size_t>("v:mrepair_corner", none).first;
     std::vector<vertex_descriptor> corners;  // loop vertices, by corner index
@@ -247,7 +341,7 @@ public:
         ++k;
       }
       // a loop through one vertex twice: no disc to remesh, Liepa's patch stays
-      if (k != 3 || s.add_face(t[0], t[1], t[2]) == Small::null_face()) return;
+      if (k != 3 || s.add_face(t[0], t[1], t[2]) == Small::null_face()) return out;
     }
     Remesh_options options;
     options.iterations = refine_iterations;
@@ -259,31 +353,40 @@ public:
     const Remeshing_result r = remesh_driver<false>(
         s, static_cast<const std::vector<Small_face>*>(nullptr), Remesh_mode::uniform, L, options,
         s.points(), No_constraint(), No_fixed(), quiet, start_remeshing_result(s, Remesh_mode::uniform));
-    if (!succeeded(r.status)) return;
+    if (!succeeded(r.status)) return out;
     // A remeshed patch with a degenerate face is dropped and Liepa's patch
     // stays. One that crosses itself is caught by the patch guard after the
     // insertion, which puts Liepa's patch back.
     for (Small_face f : s.faces())
-      if (CGAL::Polygon_mesh_processing::is_degenerate_triangle_face(f, s)) return;
+      if (CGAL::Polygon_mesh_processing::is_degenerate_triangle_face(f, s)) return out;
     // `s` was compacted: corner indices moved with their vertices
-    std::vector<vertex_descriptor> corner_of(s.number_of_vertices(), GT::null_vertex());
-    std::vector<Vec3> positions(s.number_of_vertices());
+    out.corner_of.assign(s.number_of_vertices(), GT::null_vertex());
+    out.positions.resize(s.number_of_vertices());
     for (Small_vertex v : s.vertices()) {
       const std::size_t c = corner_index[v];
-      if (c != none) corner_of[std::size_t(v)] = corners[c];
+      if (c != none) out.corner_of[std::size_t(v)] = corners[c];
       const Small::Point& p = s.point(v);
-      positions[std::size_t(v)] = Vec3{{p.x(), p.y(), p.z()}};
+      out.positions[std::size_t(v)] = Vec3{{p.x(), p.y(), p.z()}};
     }
-    std::vector<std::array<std::size_t, 3>> triangles;
-    triangles.reserve(s.number_of_faces());
+    out.triangles.reserve(s.number_of_faces());
     for (Small_face f : s.faces()) {
       std::array<std::size_t, 3> t;
       int k = 0;
       for (Small_vertex v : CGAL::vertices_around_face(s.halfedge(f), s)) t[k++] = std::size_t(v);
-      triangles.push_back(t);
+      out.triangles.push_back(t);
     }
+    out.ok = true;
+    return out;
+  }
+
+  // Puts a remeshed patch in place of Liepa's; when it cannot go back (a new
+  // inner edge would join two loop vertices joined elsewhere), Liepa's stays.
+  void put_refined(Operations& patch_ops, std::vector<face_descriptor>& patch, const Refined_patch& r,
+                   std::vector<vertex_descriptor>& added)
+  {
+    if (!r.ok) return;
     std::vector<vertex_descriptor> created;
-    if (patch_ops.replace_patch(patch, corner_of, positions, triangles, created)) added = created;
+    if (patch_ops.replace_patch(patch, r.corner_of, r.positions, r.triangles, created)) added = created;
   }
 
   // Removes the faces around the loops of `holes` (their boundary's 1-ring),
@@ -331,7 +434,7 @@ public:
     loops_of(all, loops);
     prepare_guard(loops);
     std::vector<halfedge_descriptor> failed, next;
-    std::size_t done = 0;
+    std::vector<Batch_fill> batch;
     for (std::size_t index = 0; index < loops.size(); ++index) {
       const halfedge_descriptor h = loops[index];
       if (visitor.stop_requested()) return Status::cancelled;
@@ -344,10 +447,15 @@ public:
       }
       if (is_sheet_border(h)) { ++result.sheet_borders; continue; }
       ++result.holes_found;
-      if (fill(h, n, index)) ++result.holes_filled;
-      else fill_failed(h, failed);
-      if ((++done & 63) == 0) visitor.progress(double(done) / double(loops.size()));
+      Batch_fill b;
+      b.index = index;
+      b.n = n;
+      b.h = h;
+      batch.push_back(std::move(b));
     }
+    visitor.progress(0.2);
+    fill_batch(batch, failed);
+    visitor.progress(0.8);
     // 3.5: enlarge the aborted holes by their 1-ring and retry, a bounded
     // number of times. Enlarging all of them at once keeps every stored
     // halfedge valid (a loop's halfedges are only touched by its own round).

@@ -72,30 +72,32 @@ public:
       if (eligible[f]) F.push_back(static_cast<Inspect_index>(f));
     const std::size_t n = F.size();
     if (n < 2) return 0;
-    std::vector<double> box(6 * n);
-    parallel_for_index(n, 8192, [&](std::size_t i) {
-      const Inspect_index* v = &a_.corner_v[a_.face_off[F[i]]];
-      double* b = &box[6 * i];
-      for (int d = 0; d < 3; ++d) {
-        const double x = a_.point(v[0])[d], y = a_.point(v[1])[d], z = a_.point(v[2])[d];
-        b[d] = std::min(x, std::min(y, z));
-        b[3 + d] = std::max(x, std::max(y, z));
-      }
-    });
+    // The boxes are floats relative to the lowest corner, rounded outwards:
+    // half the memory of doubles (the counter's 10M-face peak), and a float
+    // box only grows, so no pair is missed (the exact test follows).
     struct Ext
     {
       double extent = 0;
       double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     };
+    auto face_range = [&](std::size_t i, int d, double& lo, double& hi) {
+      const Inspect_index* v = &a_.corner_v[a_.face_off[F[i]]];
+      const double x = a_.point(v[0])[d], y = a_.point(v[1])[d], z = a_.point(v[2])[d];
+      lo = std::min(x, std::min(y, z));
+      hi = std::max(x, std::max(y, z));
+    };
     Ext tot;
     for (const Ext& e : chunked<Ext>(n, [&](std::size_t b, std::size_t e, Ext& s) {
            for (std::size_t i = b; i < e; ++i) {
-             const double* x = &box[6 * i];
-             s.extent += std::max(x[3] - x[0], std::max(x[4] - x[1], x[5] - x[2]));
+             double extent = 0;
              for (int d = 0; d < 3; ++d) {
-               s.lo[d] = std::min(s.lo[d], x[d]);
-               s.hi[d] = std::max(s.hi[d], x[3 + d]);
+               double lo, hi;
+               face_range(i, d, lo, hi);
+               extent = std::max(extent, hi - lo);
+               s.lo[d] = std::min(s.lo[d], lo);
+               s.hi[d] = std::max(s.hi[d], hi);
              }
+             s.extent += extent;
            }
          })) {
       tot.extent += e.extent;
@@ -104,13 +106,28 @@ public:
         tot.hi[d] = std::max(tot.hi[d], e.hi[d]);
       }
     }
+    std::vector<float> box(6 * n);
+    parallel_for_index(n, 8192, [&](std::size_t i) {
+      float* b = &box[6 * i];
+      for (int d = 0; d < 3; ++d) {
+        double lo, hi;
+        face_range(i, d, lo, hi);
+        lo -= tot.lo[d];
+        hi -= tot.lo[d];
+        float flo = static_cast<float>(lo), fhi = static_cast<float>(hi);
+        if (double(flo) > lo) flo = std::nextafter(flo, -HUGE_VALF);
+        if (double(fhi) < hi) fhi = std::nextafter(fhi, HUGE_VALF);
+        b[d] = flo;
+        b[3 + d] = fhi;
+      }
+    });
     double h = 2.0 * tot.extent / double(n);
     for (int d = 0; d < 3; ++d) h = std::max(h, (tot.hi[d] - tot.lo[d]) / double(1 << 20));
     if (!(h > 0)) h = 1.0;
     // Finite coordinates near +-DBL_MAX make ranges overflow to inf and h too;
     // the clamp keeps the cell index defined (everything then shares a cell).
-    auto cell = [&](double x, int d) {
-      const double t = std::floor((x - tot.lo[d]) / h);
+    auto cell = [&](double x, int /*d*/) {
+      const double t = std::floor(x / h);
       if (!(t > 0)) return std::uint64_t(0);
       return static_cast<std::uint64_t>(std::min(t, double(1 << 20)));
     };
@@ -120,7 +137,7 @@ public:
     const std::uint64_t big_cells = 64;
     std::vector<Inspect_index> count(n + 1, 0);
     parallel_for_index(n, 8192, [&](std::size_t i) {
-      const double* x = &box[6 * i];
+      const float* x = &box[6 * i];
       std::uint64_t c = 1;
       for (int d = 0; d < 3; ++d) c *= cell(x[3 + d], d) - cell(x[d], d) + 1;
       count[i] = c > big_cells ? 0 : static_cast<Inspect_index>(c);
@@ -133,7 +150,7 @@ public:
     std::vector<std::uint64_t> ekey(total);
     std::vector<Inspect_index> eface(total);
     parallel_for_index(n, 8192, [&](std::size_t i) {
-      const double* x = &box[6 * i];
+      const float* x = &box[6 * i];
       Inspect_index o = count[i];
       if (o == count[i + 1]) return;
       for (std::uint64_t a = cell(x[0], 0); a <= cell(x[3], 0); ++a)
@@ -154,13 +171,14 @@ public:
     for (std::size_t e = 0; e < total; ++e) ++boff[bucket_of(ekey[e])];
     exclusive_scan_in_place(boff);
     boff[nb] = total;
+    // placed by bumping each bucket's offset, which then holds the next
+    // bucket's: shifted back by one (no copy of the offsets)
     std::vector<Inspect_index> order(total);
-    {
-      std::vector<Inspect_index> pos(boff.begin(), boff.end() - 1);
-      for (std::size_t e = 0; e < total; ++e) order[pos[bucket_of(ekey[e])]++] = static_cast<Inspect_index>(e);
-    }
+    for (std::size_t e = 0; e < total; ++e) order[boff[bucket_of(ekey[e])]++] = static_cast<Inspect_index>(e);
+    for (std::size_t k = nb; k > 0; --k) boff[k] = boff[k - 1];
+    boff[0] = 0;
     auto overlap = [&](std::size_t i, std::size_t j) {
-      const double *x = &box[6 * i], *y = &box[6 * j];
+      const float *x = &box[6 * i], *y = &box[6 * j];
       for (int d = 0; d < 3; ++d)
         if (x[d] > y[3 + d] || y[d] > x[3 + d]) return false;
       return true;
@@ -181,7 +199,7 @@ public:
                  for (auto q = p + 1; q != r_end; ++q) {
                    const std::size_t i = eface[*p], j = eface[*q];
                    if (!overlap(i, j)) continue;
-                   const double *x = &box[6 * i], *y = &box[6 * j];
+                   const float *x = &box[6 * i], *y = &box[6 * j];
                    if (key(cell(std::max(x[0], y[0]), 0), cell(std::max(x[1], y[1]), 1),
                            cell(std::max(x[2], y[2]), 2)) != ck)
                      continue; // tested in another cell
@@ -199,7 +217,7 @@ public:
       using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t,
                                                             CGAL::Box_intersection_d::ID_EXPLICIT>;
       auto make = [&](std::size_t i) {
-        const double* x = &box[6 * i];
+        const float* x = &box[6 * i];
         return Box(CGAL::Bbox_3(x[0], x[1], x[2], x[3], x[4], x[5]), i);
       };
       std::vector<Box> bigs, rest;
