@@ -13,6 +13,7 @@
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/boost/graph/helpers.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -463,6 +464,51 @@ void expect_clean_disk(const Mesh& m, std::size_t outer_loop, const char* what)
   }
   // a disk: V - E + F = 1
   EXPECT_EQ(vertices(m).size() + face_count(m), edges(m).size() + 1);
+}
+
+// The first round of fills runs as a batch whose patches are remeshed in
+// parallel (hole_filler.h, fill_batch): the result must not depend on the
+// number of threads (the same faces on the same points, in the same order).
+TYPED_TEST(Clean_pipeline, batch_fill_does_not_depend_on_the_threads)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = grid(60, 60, 0.5);
+  // 16 rectangular holes of 2 to 4 cells a side on a wavy sheet
+  std::vector<Polygon> keep;
+  for (std::size_t k = 0; k < s.polygons.size(); ++k) {
+    const std::size_t cell = k / 2, i = cell % 60, j = cell / 60;
+    const bool hole = i % 14 >= 5 && i % 14 < 7 + (j / 14) % 3 && j % 14 >= 5 && j % 14 < 7 + (i / 14) % 3 &&
+                      i < 56 && j < 56;
+    if (!hole) keep.push_back(s.polygons[k]);
+  }
+  s.polygons.swap(keep);
+  for (Point& p : s.points) p = Point(p.x(), p.y(), 0.8 * std::sin(0.4 * p.x()) * std::cos(0.3 * p.y()));
+  const Mesh m0 = to_mesh<Mesh>(compacted(s));
+  auto fill_with = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    Mesh m = m0;
+    const auto r = mrepair::fill_small_holes(m, MP::max_hole_vertices(40));
+    EXPECT_EQ(r.status, mrepair::Status::ok);
+    EXPECT_EQ(r.holes_filled, 16u);
+    EXPECT_GT(r.vertices_added, 0u);  // refined patches, not Liepa's alone
+    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+    std::vector<std::array<double, 9>> triangles;
+    for (auto f : faces(m)) {
+      std::array<double, 9> t{};
+      int k = 0;
+      for (auto v : CGAL::vertices_around_face(halfedge(f, m), m)) {
+        const Point p = get(CGAL::vertex_point, m, v);
+        t[k++] = p.x();
+        t[k++] = p.y();
+        t[k++] = p.z();
+      }
+      triangles.push_back(t);
+    }
+    return triangles;
+  };
+  const auto one = fill_with(1), all = fill_with(8);
+  EXPECT_GT(one.size(), face_count(m0));
+  EXPECT_TRUE(one == all);
 }
 
 TYPED_TEST(Clean_pipeline, fill_avoids_an_existing_chord_of_its_loop)
