@@ -74,12 +74,19 @@ struct Near_degenerate_criterion
   {
     return length < skinny_edge_factor * local_mean;
   }
+  bool is_skinny_angle(double angle) const { return angle < skinny_angle; }  // false for NaN
+  /// `opposite_is_skinny`: `is_skinny_angle` of the corner facing the edge in
+  /// one face (decided once per corner where the angles are computed).
+  bool edge_makes_face_near_degenerate(double length, bool opposite_is_skinny, double global_mean,
+                                       double local_mean) const
+  {
+    return is_zero_edge(length, global_mean) || (opposite_is_skinny && is_skinny_edge(length, local_mean));
+  }
   /// `opposite_angle`: the corner facing the edge in one face.
   bool edge_makes_face_near_degenerate(double length, double opposite_angle, double global_mean,
                                        double local_mean) const
   {
-    return is_zero_edge(length, global_mean) ||
-           (opposite_angle < skinny_angle && is_skinny_edge(length, local_mean));
+    return edge_makes_face_near_degenerate(length, is_skinny_angle(opposite_angle), global_mean, local_mean);
   }
 };
 

@@ -113,9 +113,6 @@ public:
     return a == b || b == c || a == c || CGAL::collinear(a, b, c);
   }
 
-  // Fixes what it can; the faces left are counted by the caller once the
-  // duplicate faces are gone too (a pillow flattened by an earlier step is
-  // degenerate, and goes as a duplicate pair).
   // the degenerate faces, found in parallel (reads only: safe on any mesh)
   std::vector<face_descriptor> degenerate_faces() const
   {
@@ -128,6 +125,9 @@ public:
     return out;
   }
 
+  // Fixes what it can; the faces left are counted by the caller once the
+  // duplicate faces are gone too (a pillow flattened by an earlier step is
+  // degenerate, and goes as a duplicate pair).
   void run(std::size_t cap)
   {
     for (face_descriptor f : degenerate_faces()) queue_.insert(f);

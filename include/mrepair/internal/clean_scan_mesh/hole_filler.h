@@ -75,13 +75,6 @@ public:
     std::vector<vertex_descriptor> corner_of;
     std::vector<Vec3> positions;
     std::vector<std::array<std::size_t, 3>> triangles;
-    void swap_into(Refined_patch& o)
-    {
-      std::swap(ok, o.ok);
-      corner_of.swap(o.corner_of);
-      positions.swap(o.positions);
-      triangles.swap(o.triangles);
-    }
   };
 
   Hole_filling_result result;
@@ -231,30 +224,12 @@ public:
     return true;
   }
 
-  // Inserts the patch of the loop of `h` through the local operations:
-  // Liepa's triangulation, then refinement and fairing of the new faces,
-  // with the statistics updated once for the whole patch.
-  // `index`: the loop's place in the list the guard was prepared with.
-  bool fill(halfedge_descriptor h, std::size_t n, std::size_t index)
-  {
-    last_fill_intersected_ = false;
-    double mean = 0.;
-    if (!loop_mean_length(h, n, mean)) return false;
-    return ops_.insert_patch(h, [&](Operations& patch_ops, std::vector<vertex_descriptor>& /*loop*/,
-                                    std::vector<vertex_descriptor>& added) {
-      std::vector<face_descriptor> patch;
-      if (!triangulate(h, n, patch)) return false;
-      // Liepa's patch, kept to fall back on when the refined one crosses
-      // (the remesher keeps the loop's vertices, so its triangles go back as they are)
-      const std::vector<std::array<vertex_descriptor, 3>> coarse = patch_ops.triangles_of(patch);
-      if (refine_ && n > 3) put_refined(patch_ops, patch, remesh_patch(patch, density_ * mean), added);
-      return finish_fill(patch_ops, patch, coarse, added, index);
-    });
-  }
-
   // A loop filled in a batch (fill_batch).
   struct Batch_fill
   {
+    Batch_fill(std::size_t loop_index, std::size_t loop_size, halfedge_descriptor border)
+      : index(loop_index), n(loop_size), h(border)
+    {}
     std::size_t index = 0, n = 0;
     halfedge_descriptor h;
     double length = 0.;  // target edge length of the refinement
@@ -301,7 +276,7 @@ public:
         });
       if (filled) ++result.holes_filled;
       else fill_failed(b.h, failed);
-      Refined_patch().swap_into(b.refined);  // frees the copy
+      b.refined = Refined_patch();  // frees the copy
     }
   }
 
@@ -447,11 +422,7 @@ public:
       }
       if (is_sheet_border(h)) { ++result.sheet_borders; continue; }
       ++result.holes_found;
-      Batch_fill b;
-      b.index = index;
-      b.n = n;
-      b.h = h;
-      batch.push_back(std::move(b));
+      batch.emplace_back(index, n, h);
     }
     visitor.progress(0.2);
     fill_batch(batch, failed);
@@ -493,6 +464,7 @@ public:
       failed.clear();
       intersected_.clear();
       prepare_guard(loops);
+      batch.clear();
       for (std::size_t index = 0; index < loops.size(); ++index) {
         const halfedge_descriptor h = loops[index];
         std::size_t n = loop_size(h);
@@ -504,9 +476,9 @@ public:
           result.open_holes.push_back({n, "non_finite"});
           continue;
         }
-        if (fill(h, n, index)) ++result.holes_filled;
-        else fill_failed(h, failed);
+        batch.emplace_back(index, n, h);
       }
+      fill_batch(batch, failed);
     }
     return result.open_holes.empty() ? Status::ok : Status::partial;
   }

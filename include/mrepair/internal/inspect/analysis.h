@@ -60,8 +60,8 @@ class Surface_analysis
   std::vector<unsigned char> face_ok_; // all vertices finite
   std::vector<unsigned char> repeated_;
   std::vector<unsigned char> collinear_;
-  // per corner: its angle is below the skinny angle (triangles only): all the
-  // near-degenerate test reads of the angles, 1 byte instead of a double
+  // per corner: is_skinny_angle (triangles only): all the near-degenerate
+  // test reads of the angles, 1 byte instead of a double
   // (240 MB at 10M faces, alive at the inspection's memory peak)
   std::vector<unsigned char> skinny_corner_;
   std::vector<double> edge_len_;       // NaN when an endpoint is not finite
@@ -251,8 +251,19 @@ private:
     return true;
   }
 
+  // the criterion of definitions.h; corner angles here are in degrees
+  Near_degenerate_criterion near_degenerate_criterion() const
+  {
+    Near_degenerate_criterion crit;
+    crit.zero_edge_factor = t_.zero_edge_factor;
+    crit.skinny_edge_factor = t_.skinny_edge_factor;
+    crit.skinny_angle = t_.skinny_angle;
+    return crit;
+  }
+
   void face_pass()
   {
+    const Near_degenerate_criterion crit = near_degenerate_criterion();
     const std::size_t nf = a_.num_faces();
     normal_.assign(3 * nf, 0.0);
     face_ok_.assign(nf, 0);
@@ -297,7 +308,7 @@ private:
                                  std::atan2(len, d1) * degrees_per_radian,
                                  std::atan2(len, d2) * degrees_per_radian};
           for (int i = 0; i < 3; ++i) {
-            skinny_corner_[c0 + i] = ang[i] < t_.skinny_angle;  // false for NaN
+            skinny_corner_[c0 + i] = crit.is_skinny_angle(ang[i]);
             s.min_angle = std::min(s.min_angle, ang[i]);
             if (ang[i] < small) ++s.small;
           }
@@ -603,11 +614,7 @@ private:
   void near_degenerate()
   {
     if (std::isnan(r_.edge_length_mean)) return;
-    // the criterion of definitions.h; corner angles here are in degrees
-    Near_degenerate_criterion crit;
-    crit.zero_edge_factor = t_.zero_edge_factor;
-    crit.skinny_edge_factor = t_.skinny_edge_factor;
-    crit.skinny_angle = t_.skinny_angle;
+    const Near_degenerate_criterion crit = near_degenerate_criterion();
     const double mean = r_.edge_length_mean;
     auto local_mean = [&](std::size_t e) {
       return 0.5 * (vertex_mean_len_[a_.edge_v[2 * e]] + vertex_mean_len_[a_.edge_v[2 * e + 1]]);
@@ -623,8 +630,8 @@ private:
         for (std::size_t i = 0; i < 3; ++i) {
           const Inspect_index e = a_.corner_e[c0 + i];
           if (e == inspect_npos) continue;
-          // the criterion of definitions.h with the angle test done in face_pass
-          if (zero(e) || (skinny_corner_[c0 + (i + 2) % 3] && skinny(e))) {
+          const bool opposite_is_skinny = skinny_corner_[c0 + (i + 2) % 3];
+          if (crit.edge_makes_face_near_degenerate(edge_len_[e], opposite_is_skinny, mean, local_mean(e))) {
             ++s;
             break;
           }

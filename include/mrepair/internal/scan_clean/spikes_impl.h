@@ -82,7 +82,30 @@ public:
   bool spiked(vertex_descriptor v) const { return by_dihedral(v) || by_height(v); }
 };
 
-// One parallel pass: the spiked vertices, and how many of them only the
+// The spiked vertices among `candidates`, in their order, in one parallel
+// pass; `by_height` tells for each whether only the height criterion finds it.
+template <typename Mesh, typename VPM>
+void spiked_among(const Geometric_statistics<Mesh, VPM>& st, const Spike_settings& s,
+                  const std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>& candidates,
+                  std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>& spiked,
+                  std::vector<unsigned char>& by_height)
+{
+  std::vector<unsigned char> flag(candidates.size(), 0);
+  Spike_detector<Mesh, VPM> det(st, s);
+  parallel_for_mesh_elements<Mesh>(candidates.size(), [&](std::size_t i) {
+    if (det.by_dihedral(candidates[i])) flag[i] = 1;
+    else if (det.by_height(candidates[i])) flag[i] = 2;
+  });
+  spiked.clear();
+  by_height.clear();
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (flag[i]) {
+      spiked.push_back(candidates[i]);
+      by_height.push_back(flag[i] == 2);
+    }
+}
+
+// The spiked vertices of the whole mesh, and how many of them only the
 // height criterion finds.
 template <typename Mesh, typename VPM>
 std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>
@@ -91,21 +114,11 @@ collect_spiked(const Geometric_statistics<Mesh, VPM>& st, const Spike_settings& 
 {
   const Mesh& m = st.mesh();
   using vertex_descriptor = typename boost::graph_traits<Mesh>::vertex_descriptor;
-  std::vector<vertex_descriptor> vs(vertices(m).begin(), vertices(m).end());
-  std::vector<unsigned char> flag(vs.size(), 0);
-  Spike_detector<Mesh, VPM> det(st, s);
-  parallel_for_mesh_elements<Mesh>(vs.size(), [&](std::size_t i) {
-    if (det.by_dihedral(vs[i])) flag[i] = 1;
-    else if (det.by_height(vs[i])) flag[i] = 2;
-  });
+  const std::vector<vertex_descriptor> vs(vertices(m).begin(), vertices(m).end());
   std::vector<vertex_descriptor> out;
-  std::size_t nh = 0;
-  for (std::size_t i = 0; i < vs.size(); ++i)
-    if (flag[i]) {
-      out.push_back(vs[i]);
-      nh += flag[i] == 2;
-    }
-  if (by_height_only) *by_height_only = nh;
+  std::vector<unsigned char> by_height;
+  spiked_among(st, s, vs, out, by_height);
+  if (by_height_only) *by_height_only = static_cast<std::size_t>(std::count(by_height.begin(), by_height.end(), 1));
   return out;
 }
 
@@ -157,10 +170,9 @@ public:
 private:
   void prime(const Spike_settings& s)
   {
-    spiked_ = collect_spiked(st_, s);
-    Spike_detector<Mesh, VPM> det(st_, s);
-    by_height_.assign(spiked_.size(), 0);
-    for (std::size_t i = 0; i < spiked_.size(); ++i) by_height_[i] = !det.by_dihedral(spiked_[i]);
+    const Mesh& m = st_.mesh();
+    spiked_among(st_, s, std::vector<vertex_descriptor>(vertices(m).begin(), vertices(m).end()), spiked_,
+                 by_height_);
     angle_ = s.spike_angle;
     height_ = s.height_factor;
     journal_.clear();
@@ -178,19 +190,7 @@ private:
     journal_.erase(std::remove_if(journal_.begin(), journal_.end(),
                                   [&](vertex_descriptor v) { return is_removed_vertex(m, v); }),
                    journal_.end());
-    std::vector<unsigned char> flag(journal_.size(), 0);
-    Spike_detector<Mesh, VPM> det(st_, s);
-    parallel_for_mesh_elements<Mesh>(journal_.size(), [&](std::size_t i) {
-      if (det.by_dihedral(journal_[i])) flag[i] = 1;
-      else if (det.by_height(journal_[i])) flag[i] = 2;
-    });
-    spiked_.clear();
-    by_height_.clear();
-    for (std::size_t i = 0; i < journal_.size(); ++i)
-      if (flag[i]) {
-        spiked_.push_back(journal_[i]);
-        by_height_.push_back(flag[i] == 2);
-      }
+    spiked_among(st_, s, journal_, spiked_, by_height_);
     journal_.clear();
   }
 };
