@@ -15,6 +15,13 @@
 //             repair_polygon_soup, orient_polygon_soup,
 //             polygon_soup_to_polygon_mesh, stitch_borders,
 //             duplicate_non_manifold_vertices, write_polygon_mesh.
+//   job-gaps: `mrepair close-gaps INPUT OUT.off --tolerance auto` vs
+//             read_polygon_mesh, experimental::snap_borders (parallel if
+//             available) + stitch_borders, write_polygon_mesh. The CGAL side
+//             is given mrepair's estimated tolerance, computed untimed (a CGAL
+//             user has to know it); MREPAIR_GAP_TOLERANCE (x diagonal) sets
+//             both sides instead. Both outputs: boundary edges and
+//             T-junctions, beside the input's boundary edges.
 // The mrepair side runs the `mrepair` program as a child process (found
 // beside the harness in the build tree, tools/mrepair, or in $MREPAIR_CLI);
 // its phase breakdown is every "...seconds" field of its JSON report. The
@@ -24,13 +31,16 @@
 #include "bench.h"
 #include "cgal_chain.h"
 
+#include <mrepair/close_gaps.h>
 #include <mrepair/inspect.h>
 #include <mrepair/io.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 #include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/internal/Snapping/snap.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -49,6 +59,7 @@
 #include <spawn.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -221,7 +232,9 @@ void inspect_file(const std::string& path, mrepair::Report& r, bool self_interse
   r.add("closed", CGAL::is_closed(m));
   r.add("components", i.connected_components);
   r.add("small_components", i.small_components);
+  r.add("boundary_edges", i.boundary_edges);
   r.add("boundary_loops", i.boundary_loops);
+  r.add("t_junctions", i.t_junctions);
   r.add("small_holes", i.small_holes);
   r.add("non_manifold_vertices", i.non_manifold_vertices);
   r.add("near_degenerate_faces", i.near_degenerate_faces);
@@ -230,13 +243,15 @@ void inspect_file(const std::string& path, mrepair::Report& r, bool self_interse
 }
 
 mrepair::bench::Measurement run_mrepair(const std::string& input, const char* command,
-                                        const char* output_name, bool binary)
+                                        const char* output_name, bool binary,
+                                        const std::vector<std::string>& extra = {})
 {
   mrepair::bench::Measurement out;
   Scratch dir;
   const std::string output = dir.file(output_name), report = dir.file("report.json");
   std::vector<std::string> args = {mrepair_program(), command, input, output, "--report", report, "--quiet"};
   if (binary) args.push_back("--binary");
+  args.insert(args.end(), extra.begin(), extra.end());
   const Child_run c = run_child(args);
   out.seconds = c.seconds;
   out.result.add("program", args[0]);
@@ -345,6 +360,79 @@ mrepair::bench::Measurement run_cgal(const std::string& input, bool scan)
   return out;
 }
 
+// The gap tolerance of job-gaps: MREPAIR_GAP_TOLERANCE x the bounding-box
+// diagonal when set, else 0 (mrepair estimates it).
+double relative_gap_tolerance()
+{
+  const char* s = std::getenv("MREPAIR_GAP_TOLERANCE");
+  return s ? std::atof(s) : 0.0;
+}
+
+// boundary edges of the input, untimed: the "before" of both sides
+void input_boundary(const std::string& input, mrepair::Report& before)
+{
+  Mesh m;
+  if (mrepair::read_polygon_mesh(input, m).status != mrepair::Status::ok) return;
+  before.add("boundary_edges", std::size_t(std::count_if(halfedges(m).begin(), halfedges(m).end(),
+                                                          [&](Mesh::Halfedge_index h) { return is_border(h, m); })));
+}
+
+mrepair::bench::Measurement run_mrepair_gaps(const std::string& input)
+{
+  const double rel = relative_gap_tolerance();
+  std::vector<std::string> extra = {"--tolerance", "auto"};
+  if (rel > 0) extra = {"--tolerance", std::to_string(rel), "--relative"};
+  mrepair::bench::Measurement out = run_mrepair(input, "close-gaps", "out.off", false, extra);
+  input_boundary(input, out.before);
+  return out;
+}
+
+mrepair::bench::Measurement run_cgal_gaps(const std::string& input)
+{
+  mrepair::bench::Measurement out;
+  Scratch dir;
+  const std::string output = dir.file("out.off");
+  Phases phase{out.result};
+  CGAL::Real_timer total;
+  total.start();
+  Mesh m;
+  if (!phase("read_polygon_mesh", [&] { return CGAL::IO::read_polygon_mesh(input, m); })) {
+    out.status = "read failed";
+    return out;
+  }
+  // the tolerance a CGAL user would have to supply: not part of the job
+  CGAL::Real_timer untimed;
+  untimed.start();
+  double tol = relative_gap_tolerance();
+  if (tol > 0) {
+    const CGAL::Bbox_3 b = PMP::bbox(m);
+    tol *= std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) +
+                     CGAL::square(b.zmax() - b.zmin()));
+  } else {
+    tol = mrepair::estimate_gap_tolerance(m).tolerance;
+  }
+  untimed.stop();
+  out.result.add("tolerance", tol);
+  CGAL::Constant_property_map<Mesh::Vertex_index, double> tolerance_map(tol);
+  out.result.add("snapped", phase("snap_borders", [&] {
+    return PMP::experimental::snap_borders<CGAL::Parallel_if_available_tag>(m, tolerance_map);
+  }));
+  out.result.add("stitched", phase("stitch_borders", [&] { return PMP::stitch_borders(m); }));
+  const bool written = phase("write_polygon_mesh", [&] {
+    return CGAL::IO::write_polygon_mesh(output, m, CGAL::parameters::stream_precision(17));
+  });
+  total.stop();
+  out.seconds = total.time() - untimed.time();
+  if (!written) out.status = "write failed";
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  out.result.add("process_peak_mb", ru.ru_maxrss / 1024.0);
+  m.clear();
+  input_boundary(input, out.before);
+  inspect_file(output, out.after, false);
+  return out;
+}
+
 mrepair::bench::Task_registrar job{
     {"job",
      "whole command with file I/O: `mrepair repair` vs the CGAL soup + cleaning chain with its "
@@ -360,5 +448,13 @@ mrepair::bench::Task_registrar job_soup{
      {{"mrepair soup (process)",
        [](const std::string& p) { return run_mrepair(p, "soup", "out.off", false); }},
       {"CGAL chain (process)", [](const std::string& p) { return run_cgal(p, false); }}}}};
+
+mrepair::bench::Task_registrar job_gaps{
+    {"job-gaps",
+     "whole command with file I/O: `mrepair close-gaps --tolerance auto` vs CGAL read_polygon_mesh, "
+     "snap_borders + stitch_borders (at mrepair's estimated tolerance, or MREPAIR_GAP_TOLERANCE x "
+     "diagonal for both), write_polygon_mesh",
+     {{"mrepair close-gaps (process)", run_mrepair_gaps},
+      {"CGAL snap+stitch (process)", run_cgal_gaps}}}};
 
 }  // namespace

@@ -1775,4 +1775,36 @@ TEST(Io_issue_17, large_files_cross_the_default_chunk_size)
   }
 }
 
+TEST(Io_issue_18, mesh_check_names_the_first_defect_whatever_the_blocks)
+{
+  // a grid large enough for the parallel blocks of the soup-to-mesh check
+  // (over 16,384 polygons and vertices); one triangle flipped near the start
+  // and one near the end: the refusal names the first, as a sequential scan
+  // would, and the second alone names a vertex of a later block
+  const Soup g = grid(140, 140, 1.0, false);
+  ASSERT_GT(g.polygons.size(), 2u * 16384u);
+  ASSERT_GT(g.points.size(), 16384u);
+  auto refusal = [&](std::vector<std::size_t> flipped) {
+    Soup s = g;
+    for (std::size_t f : flipped) std::reverse(s.polygons[f].begin(), s.polygons[f].end());
+    const std::string path = temp_file("flipped.off");
+    EXPECT_EQ(mrepair::write_polygon_soup(path, s.points, s.polygons).status, Status::ok);
+    Surface_mesh m;
+    const Io_result r = mrepair::read_polygon_mesh(path, m);
+    EXPECT_EQ(r.status, Status::non_manifold_input);
+    EXPECT_EQ(faces(m).size(), 0u);
+    return r.message;
+  };
+  const std::size_t late = g.polygons.size() - 100;
+  const std::string first = refusal({100}), second = refusal({late});
+  EXPECT_NE(first.find("used twice in the same direction"), std::string::npos) << first;
+  EXPECT_NE(first, second);
+  EXPECT_EQ(refusal({100, late}), first);
+  EXPECT_EQ(refusal({late, 100}), first);
+  // the vertex named by the late flip lies past the first block of vertices
+  const std::size_t at = second.find("edge (");
+  ASSERT_NE(at, std::string::npos) << second;
+  EXPECT_GE(std::stoul(second.substr(at + 6)), 16384u) << second;
+}
+
 } // namespace

@@ -216,8 +216,11 @@ int run(int argc, char** argv)
 
   mrepair::Report report;
   Mesh mesh;
-  mrepair::Io_result io = mrepair::read_polygon_mesh(a.positional[0], mesh);
+  mrepair::Io_result io;
+  const double read_seconds = mrepair::cli::timed([&] { io = mrepair::read_polygon_mesh(a.positional[0], mesh); });
+  if (!a.has("quiet")) std::cerr << "  read: " << std::to_string(read_seconds).substr(0, 6) << " s\n";
   io.to_report(report.section("input"));
+  report.section("input").add("seconds", read_seconds);
   if (io.status == mrepair::Status::non_manifold_input || io.status == mrepair::Status::invalid_index ||
       io.status == mrepair::Status::non_finite_input) {
     // not a valid polygon mesh: make it one first (what `mrepair soup` does)
@@ -271,8 +274,10 @@ int run(int argc, char** argv)
   }
 
   if (auto_tolerance) {
-    const mrepair::Gap_tolerance_estimate e = mrepair::estimate_gap_tolerance(mesh);
+    mrepair::Gap_tolerance_estimate e;
+    const double seconds = mrepair::cli::timed([&] { e = mrepair::estimate_gap_tolerance(mesh); });
     e.to_report(report.section("tolerance_estimate"));
+    report.section("tolerance_estimate").add("seconds", seconds);
     tol = e.tolerance;
     if (!a.has("quiet"))
       std::cerr << "  tolerance (estimated): " << tol << " from " << e.candidates << " candidates\n";
@@ -381,9 +386,14 @@ int run(int argc, char** argv)
     return mrepair::cli::fail("close-gaps: " + std::string(mrepair::to_string(r.status)) + ": " +
                               r.message);
   }
-  mesh.collect_garbage();
-  mrepair::Io_result out = mrepair::write_polygon_mesh(a.positional[1], mesh, a.has("binary"));
+  mrepair::Io_result out;
+  // the writer numbers the elements left after the contractions' removals:
+  // no collect_garbage() (a sequential pass over every property array)
+  const double write_seconds =
+      mrepair::cli::timed([&] { out = mrepair::write_polygon_mesh(a.positional[1], mesh, a.has("binary")); });
+  if (!a.has("quiet")) std::cerr << "  write: " << std::to_string(write_seconds).substr(0, 6) << " s\n";
   out.to_report(report.section("output"));
+  report.section("output").add("seconds", write_seconds);
   if (!mrepair::succeeded(out.status)) return mrepair::cli::fail(out.message);
   if (!mrepair::cli::emit_report(a, report)) return 1;
   return mrepair::cli::exit_code(r.status);

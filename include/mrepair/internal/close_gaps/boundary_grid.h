@@ -82,6 +82,55 @@ public:
   {
     query_box(p, p, r, f);
   }
+  // a nearest-item search: calls f(item) for the items of the cells within `r`
+  // of p, the cell of p first, and skips the cells farther from p than
+  // bound() (the caller's best distance so far). An item's nearest point to
+  // p lies in a cell the item is registered in, and that cell is no farther
+  // than the point, so a search for the nearest item finds the same item as
+  // `query` while reading the few cells around a near partner only.
+  template <class F, class Bound>
+  void query_nearest_first(const P& p, double r, F&& f, Bound&& bound) const
+  {
+    std::array<long, 3> lo, hi, at;
+    std::size_t count = 1;
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = index(p[d] - r, d);
+      hi[d] = index(p[d] + r, d);
+      at[d] = index(p[d], d);
+      count *= std::size_t(hi[d] - lo[d] + 1);
+    }
+    constexpr long max_span = 4;
+    if (count > std::size_t(max_span * max_span * max_span)) {  // a radius of several cells: no pruning
+      query(p, r, f);
+      return;
+    }
+    // squared distance from p to the slabs of each axis, shrunk by a hair so
+    // that the rounding of index() cannot put a point in a cell measured beyond it
+    const double slack = 1e-9 * cell_;
+    std::array<std::array<double, max_span>, 3> gap2;
+    for (int d = 0; d < 3; ++d)
+      for (long c = lo[d]; c <= hi[d]; ++c) {
+        const double c0 = origin_[d] + double(c) * cell_, c1 = c0 + cell_;
+        const double g = std::max({0.0, c0 - p[d], p[d] - c1}) - slack;
+        gap2[d][std::size_t(c - lo[d])] = g > 0 ? g * g : 0.0;
+      }
+    auto visit = [&](long x, long y, long z) {
+      for (std::uint32_t i = find(pack(x, y, z)); i != npos; i = next_[i]) f(items_[i]);
+    };
+    // the cell of p first: a near partner found there rules out most others
+    visit(at[0], at[1], at[2]);
+    for (long x = lo[0]; x <= hi[0]; ++x)
+      for (long y = lo[1]; y <= hi[1]; ++y)
+        for (long z = lo[2]; z <= hi[2]; ++z) {
+          if (x == at[0] && y == at[1] && z == at[2]) continue;
+          const double b = bound();
+          const double d2 = gap2[0][std::size_t(x - lo[0])] + gap2[1][std::size_t(y - lo[1])] +
+                            gap2[2][std::size_t(z - lo[2])];
+          if (d2 > b * b) continue;
+          visit(x, y, z);
+        }
+  }
+
   // calls f(item) for the items registered in cells meeting the box [a,b] (any
   // two corners) grown by `r` (with repeats).
   template <class F>

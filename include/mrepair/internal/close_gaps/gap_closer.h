@@ -38,25 +38,87 @@ namespace internal {
 /// the region of `Gap_closer::start` that is the whole mesh.
 struct Gap_whole_mesh {};
 
+// the border halfedges of `m` in halfedge order, into `out`; returns the
+// number of halfedges. On Surface_mesh the scan runs in parallel over the
+// index range (the blocks are joined in order).
+template <class Mesh>
+std::size_t collect_border_halfedges(const Mesh& m,
+                                     std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor>& out)
+{
+  using halfedge_descriptor = typename boost::graph_traits<Mesh>::halfedge_descriptor;
+  out.clear();
+  if constexpr (Is_surface_mesh<Mesh>::value) {
+#ifdef CGAL_LINKED_WITH_TBB
+    using Acc = std::pair<std::size_t, std::vector<halfedge_descriptor>>;
+    const bool garbage = m.has_garbage();
+    Acc acc = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, m.num_halfedges(), 1 << 16),
+        Acc(),
+        [&](const tbb::blocked_range<std::size_t>& r, Acc a) {
+          for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            halfedge_descriptor h(static_cast<typename halfedge_descriptor::size_type>(i));
+            if (garbage && m.is_removed(h)) continue;
+            ++a.first;
+            if (is_border(h, m)) a.second.push_back(h);
+          }
+          return a;
+        },
+        [](Acc a, const Acc& b) {
+          a.first += b.first;
+          a.second.insert(a.second.end(), b.second.begin(), b.second.end());
+          return a;
+        });
+    out.swap(acc.second);
+    return acc.first;
+#endif
+  }
+  std::size_t n = 0;
+  for (halfedge_descriptor h : halfedges(m)) {
+    ++n;
+    if (is_border(h, m)) out.push_back(h);
+  }
+  return n;
+}
+
+// calls f(h) once per border cycle of `m`, with its first halfedge in
+// halfedge order (`border`: all border halfedges, from collect_border_halfedges).
+template <class Mesh, class F>
+void for_each_border_cycle(const Mesh& m,
+                           const std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor>& border,
+                           const F& f)
+{
+  using halfedge_descriptor = typename boost::graph_traits<Mesh>::halfedge_descriptor;
+  auto walk = [&](halfedge_descriptor h, auto&& visited, auto&& mark) {
+    if (visited(h)) return;
+    halfedge_descriptor g = h;
+    do {
+      mark(g);
+      g = next(g, m);
+    } while (g != h);
+    f(h);
+  };
+  if constexpr (Is_surface_mesh<Mesh>::value) {
+    std::vector<char> seen(m.num_halfedges(), 0);  // a byte per halfedge, not a property map
+    for (halfedge_descriptor h : border)
+      walk(h, [&](halfedge_descriptor g) { return seen[std::size_t(g)] != 0; },
+           [&](halfedge_descriptor g) { seen[std::size_t(g)] = 1; });
+  } else {
+    auto seen = get(CGAL::dynamic_halfedge_property_t<bool>(), m);
+    for (halfedge_descriptor h : halfedges(m)) put(seen, h, false);
+    for (halfedge_descriptor h : border)
+      walk(h, [&](halfedge_descriptor g) { return get(seen, g); }, [&](halfedge_descriptor g) { put(seen, g, true); });
+  }
+}
+
 // border halfedge count and border cycle count of a halfedge graph.
 template <class Mesh>
 std::pair<std::size_t, std::size_t> count_boundary(const Mesh& m)
 {
-  auto visited = get(CGAL::dynamic_halfedge_property_t<bool>(), m);
-  for (auto h : halfedges(m)) put(visited, h, false);
-  std::size_t edges = 0, loops = 0;
-  for (auto h : halfedges(m)) {
-    if (!is_border(h, m)) continue;
-    ++edges;
-    if (get(visited, h)) continue;
-    ++loops;
-    auto g = h;
-    do {
-      put(visited, g, true);
-      g = next(g, m);
-    } while (g != h);
-  }
-  return {edges, loops};
+  std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor> border;
+  collect_border_halfedges(m, border);
+  std::size_t loops = 0;
+  for_each_border_cycle(m, border, [&](typename boost::graph_traits<Mesh>::halfedge_descriptor) { ++loops; });
+  return {border.size(), loops};
 }
 
 // The worker of `Gap_closing_sequence` (see gap_closing_sequence.h for the
@@ -356,38 +418,7 @@ private:
   // border halfedges (in halfedge order); returns the number of halfedges.
   std::size_t collect_border(std::vector<halfedge_descriptor>& out) const
   {
-    out.clear();
-    if constexpr (indexed) {
-#ifdef CGAL_LINKED_WITH_TBB
-      using Acc = std::pair<std::size_t, std::vector<halfedge_descriptor>>;
-      const bool garbage = tm_.has_garbage();
-      Acc acc = tbb::parallel_reduce(
-          tbb::blocked_range<std::size_t>(0, tm_.num_halfedges(), 1 << 16),
-          Acc(),
-          [&](const tbb::blocked_range<std::size_t>& r, Acc a) {
-            for (std::size_t i = r.begin(); i != r.end(); ++i) {
-              halfedge_descriptor h(static_cast<typename halfedge_descriptor::size_type>(i));
-              if (garbage && tm_.is_removed(h)) continue;
-              ++a.first;
-              if (is_border(h, tm_)) a.second.push_back(h);
-            }
-            return a;
-          },
-          [](Acc a, const Acc& b) {
-            a.first += b.first;
-            a.second.insert(a.second.end(), b.second.begin(), b.second.end());
-            return a;
-          });
-      out.swap(acc.second);
-      return acc.first;
-#endif
-    }
-    std::size_t n = 0;
-    for (halfedge_descriptor h : halfedges(tm_)) {
-      ++n;
-      if (is_border(h, tm_)) out.push_back(h);
-    }
-    return n;
+    return collect_border_halfedges(tm_, out);
   }
 
   // idmap_ is not initialised: 0 means "no id yet", which is also what an
@@ -495,19 +526,22 @@ private:
     std::uint64_t best_e = 0;
     // distances on the registered copies; only a candidate that beats the best
     // is checked against the mesh (alive, same geometry, still a border edge)
-    grid_.query(p, max_dist_, [&](const Segment_grid::Item& it) {
-      const std::uint64_t e = it.key;
-      Id a = ka(e), b = kb(e);
-      if (a == u || b == u) return;
-      double t = 0, d = seg_dist(p, it.a, it.b, t);
-      if (d > max_dist_ || !(d < best || (d == best && e < best_e))) return;
-      if (!alive_[a] || !alive_[b] || !selected_[a] || !selected_[b]) return;
-      if (pos(a) != it.a || pos(b) != it.b) return;  // stale copy of a moved edge
-      if (!is_border_edge(a, b)) return;              // stale grid entry
-      best = d;
-      best_t = t;
-      best_e = e;
-    });
+    grid_.query_nearest_first(
+        p, max_dist_,
+        [&](const Segment_grid::Item& it) {
+          const std::uint64_t e = it.key;
+          Id a = ka(e), b = kb(e);
+          if (a == u || b == u) return;
+          double t = 0, d = seg_dist(p, it.a, it.b, t);
+          if (d > max_dist_ || !(d < best || (d == best && e < best_e))) return;
+          if (!alive_[a] || !alive_[b] || !selected_[a] || !selected_[b]) return;
+          if (pos(a) != it.a || pos(b) != it.b) return;  // stale copy of a moved edge
+          if (!is_border_edge(a, b)) return;              // stale grid entry
+          best = d;
+          best_t = t;
+          best_e = e;
+        },
+        [&] { return std::min(best, max_dist_); });
     if (best > max_dist_) return pr;
     Id a = ka(best_e), b = kb(best_e);
     P3 pa = pos(a), pb = pos(b);

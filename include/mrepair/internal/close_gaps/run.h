@@ -94,19 +94,17 @@ void bridge_narrow_loops(TriangleMesh& tm, const VertexPointMap& vpm, double tol
   // the narrow loops, one halfedge each
   std::vector<halfedge_descriptor> loops;
   {
-    auto seen = get(CGAL::dynamic_halfedge_property_t<bool>(), tm);
-    for (halfedge_descriptor h : halfedges(tm)) put(seen, h, false);
+    std::vector<halfedge_descriptor> border;
+    collect_border_halfedges(tm, border);
     std::vector<Vec3> c;
-    for (halfedge_descriptor h : halfedges(tm)) {
-      if (!is_border(h, tm) || get(seen, h)) continue;
+    for_each_border_cycle(tm, border, [&](halfedge_descriptor h) {
       c.clear();
       halfedge_descriptor g = h;
       do {
-        put(seen, g, true);
         c.push_back(point(vpm, target(g, tm)));
         g = next(g, tm);
-      } while (g != h);
-      if (c.size() < 3 || c.size() > max_edges) continue;
+      } while (g != h && c.size() <= max_edges);
+      if (c.size() < 3 || c.size() > max_edges) return;
       Vec3 area{{0, 0, 0}};
       double perimeter = 0;
       for (std::size_t i = 0; i < c.size(); ++i) {
@@ -117,7 +115,7 @@ void bridge_narrow_loops(TriangleMesh& tm, const VertexPointMap& vpm, double tol
       }
       // |area| is twice the vector area
       if (perimeter > 0 && norm(area) / perimeter <= 0.5 * tolerance) loops.push_back(h);
-    }
+    });
   }
   Operations ops(tm, vpm);
   Patch_intersection_guard<TriangleMesh, VertexPointMap> guard(tm, vpm);

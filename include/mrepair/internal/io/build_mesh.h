@@ -12,6 +12,8 @@
 // polygon are left out (polygon_soup_to_polygon_mesh would add them as
 // isolated vertices, which CGAL::is_valid_polygon_mesh rejects).
 
+#include <mrepair/internal/utility.h>
+
 #include <boost/graph/graph_traits.hpp>
 #include <CGAL/boost/graph/helpers.h>
 
@@ -38,23 +40,24 @@ public:
   std::vector<std::size_t> next, prev, opposite;  // per corner
   std::vector<std::size_t> out_start, out;        // corners leaving each vertex (CSR)
 
-  /// returns false with a reason when the soup is not a polygon mesh.
+  /// returns false with a reason when the soup is not a polygon mesh. The
+  /// passes over polygons and vertices run in parallel blocks; the reason is
+  /// the one of the first element that fails, as a sequential scan gives it.
   bool compute(std::size_t num_points, const std::int64_t* indices, const std::size_t* starts,
                std::size_t num_polygons, std::string& why)
   {
     const std::size_t nc = starts[num_polygons];
     next.resize(nc);
     prev.resize(nc);
-    std::vector<std::int64_t> tmp;  // large polygons' sorted indices
-    for (std::size_t f = 0; f < num_polygons; ++f) {
+    auto polygon_ok = [&](std::size_t f, std::string& reason) {
       const std::size_t b = starts[f], e = starts[f + 1];
       if (e - b < 3) {
-        why = "polygon " + std::to_string(f) + " has fewer than 3 vertices";
+        reason = "polygon " + std::to_string(f) + " has fewer than 3 vertices";
         return false;
       }
       for (std::size_t c = b; c < e; ++c) {
         if (indices[c] < 0 || static_cast<std::uint64_t>(indices[c]) >= num_points) {
-          why = "polygon " + std::to_string(f) + " has an index out of range";
+          reason = "polygon " + std::to_string(f) + " has an index out of range";
           return false;
         }
         next[c] = c + 1 < e ? c + 1 : b;
@@ -66,15 +69,18 @@ public:
         for (std::size_t i = b; i < e && !repeated; ++i)
           for (std::size_t j = i + 1; j < e && !repeated; ++j) repeated = indices[i] == indices[j];
       } else {
-        tmp.assign(indices + b, indices + e);
-        std::sort(tmp.begin(), tmp.end());
-        repeated = std::adjacent_find(tmp.begin(), tmp.end()) != tmp.end();
+        thread_local std::vector<std::int64_t> sorted;  // reused: large polygons are few but may be many
+        sorted.assign(indices + b, indices + e);
+        std::sort(sorted.begin(), sorted.end());
+        repeated = std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
       }
       if (repeated) {
-        why = "polygon " + std::to_string(f) + " repeats a vertex";
+        reason = "polygon " + std::to_string(f) + " repeats a vertex";
         return false;
       }
-    }
+      return true;
+    };
+    if (first_failure(num_polygons, polygon_ok, why) != none) return false;
     auto src = [&](std::size_t c) { return static_cast<std::size_t>(indices[c]); };
     auto dst = [&](std::size_t c) { return static_cast<std::size_t>(indices[next[c]]); };
 
@@ -90,7 +96,7 @@ public:
                 fill.begin());
       for (std::size_t c = 0; c < nc; ++c) adj[fill[src(c)]++] = Out{dst(c), c};
     }
-    for (std::size_t v = 0; v < num_points; ++v) {
+    auto group_ok = [&](std::size_t v, std::string& reason) {
       Out* b = adj.data() + out_start[v];
       Out* e = adj.data() + out_start[v + 1];
       if (e - b <= 16) {  // insertion sort: groups are small (valence)
@@ -101,20 +107,24 @@ public:
       }
       for (Out* it = b; it != e; ++it) {
         if (it->dst == v) {
-          why = "a polygon repeats vertex " + std::to_string(v);
+          reason = "a polygon repeats vertex " + std::to_string(v);
           return false;
         }
         if (it + 1 != e && it->dst == (it + 1)->dst) {
-          why = "edge (" + std::to_string(v) + ", " + std::to_string(it->dst) +
-                ") is used twice in the same direction (non-manifold edge or inconsistent orientation)";
+          reason = "edge (" + std::to_string(v) + ", " + std::to_string(it->dst) +
+                   ") is used twice in the same direction (non-manifold edge or inconsistent orientation)";
           return false;
         }
       }
-    }
+      return true;
+    };
+    if (first_failure(num_points, group_ok, why) != none) return false;
     // opposite of corner c (u -> w): the corner w -> u
     opposite.assign(nc, none);
-    for (std::size_t u = 0; u < num_points; ++u)
+    out.resize(nc);
+    parallel_blocks(num_points, [&](std::size_t u) {
       for (std::size_t k = out_start[u]; k < out_start[u + 1]; ++k) {
+        out[k] = adj[k].corner;
         const std::size_t w = adj[k].dst;
         const Out* b = adj.data() + out_start[w];
         const Out* e = adj.data() + out_start[w + 1];
@@ -122,13 +132,12 @@ public:
                                     : std::lower_bound(b, e, u, [](const Out& o, std::size_t t) { return o.dst < t; });
         if (it != e && it->dst == u) opposite[adj[k].corner] = it->corner;
       }
-    out.resize(nc);
-    for (std::size_t k = 0; k < nc; ++k) out[k] = adj[k].corner;
+    });
     adj = std::vector<Out>();
     // one fan per vertex: corners at v chained by c -> next[opposite[c]]
-    for (std::size_t v = 0; v < num_points; ++v) {
+    auto fan_ok = [&](std::size_t v, std::string& reason) {
       const std::size_t deg = out_start[v + 1] - out_start[v];
-      if (deg == 0) continue;
+      if (deg == 0) return true;
       std::size_t start = none, starts_count = 0;
       for (std::size_t k = out_start[v]; k < out_start[v + 1]; ++k) {
         const std::size_t c = out[k];
@@ -138,7 +147,7 @@ public:
         }
       }
       if (starts_count > 1) {
-        why = "vertex " + std::to_string(v) + " is non-manifold (several fans of faces)";
+        reason = "vertex " + std::to_string(v) + " is non-manifold (several fans of faces)";
         return false;
       }
       if (start == none) start = out[out_start[v]];
@@ -148,11 +157,49 @@ public:
         c = opposite[c] == none ? none : next[opposite[c]];
       } while (c != none && c != start && steps <= deg);
       if (steps != deg) {
-        why = "vertex " + std::to_string(v) + " is non-manifold (several fans of faces)";
+        reason = "vertex " + std::to_string(v) + " is non-manifold (several fans of faces)";
         return false;
       }
-    }
-    return true;
+      return true;
+    };
+    return first_failure(num_points, fan_ok, why) == none;
+  }
+
+private:
+  static constexpr std::size_t block_size = std::size_t(1) << 14;
+
+  // calls f(i) for i in [0, n), in parallel blocks
+  template <class F>
+  static void parallel_blocks(std::size_t n, const F& f)
+  {
+    const std::size_t blocks = (n + block_size - 1) / block_size;
+    parallel_for_index(blocks, 1, [&](std::size_t b) {
+      for (std::size_t i = b * block_size; i < std::min(n, (b + 1) * block_size); ++i) f(i);
+    });
+  }
+
+  // runs ok(i, reason) for i in [0, n) in parallel blocks, each block up to
+  // its first failure; returns the smallest failing i (its reason in `why`),
+  // or none
+  template <class Check>
+  static std::size_t first_failure(std::size_t n, const Check& ok, std::string& why)
+  {
+    const std::size_t blocks = (n + block_size - 1) / block_size;
+    std::vector<std::size_t> failed(blocks, none);
+    std::vector<std::string> reasons(blocks);
+    parallel_for_index(blocks, 1, [&](std::size_t b) {
+      for (std::size_t i = b * block_size; i < std::min(n, (b + 1) * block_size); ++i)
+        if (!ok(i, reasons[b])) {
+          failed[b] = i;
+          return;
+        }
+    });
+    for (std::size_t b = 0; b < blocks; ++b)
+      if (failed[b] != none) {
+        why = reasons[b];
+        return failed[b];
+      }
+    return none;
   }
 };
 
