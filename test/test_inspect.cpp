@@ -3,6 +3,7 @@
 // soup path and on both mesh types; a CGAL cross-check on a real mesh.
 #include <mrepair/inspect.h>
 #include <mrepair/relax_spikes.h>
+#include <mrepair/internal/triangle_intersection.h>
 
 #include "fixtures.h"
 
@@ -14,9 +15,11 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <map>
+#include <random>
 #include <set>
 #include <string>
 
@@ -625,4 +628,121 @@ TYPED_TEST(Inspect, agrees_with_cgal_on_elephant)
     if (fa[i].first == "kind" || fa[i].first == "defects.self_intersecting_pairs") continue;
     EXPECT_EQ(fa[i], fb[i]);
   }
+}
+
+// The double-precision certificates in front of the exact pair tests
+// (internal/triangle_intersection.h) must never change an answer. Pairs from
+// nearly coplanar fans (a subdivided flat face, the case they are for),
+// folded fans, overlapping and crossing triangles, and random triangles in a
+// small box: the pair test with the certificates gives what the exact
+// predicates alone give, and the flat cases are decided by the certificates.
+TEST(Inspect_issue_17, pair_certificates_agree_with_the_exact_predicates)
+{
+  namespace I = mrepair::internal;
+  using P = I::Epick_point;
+  using K = CGAL::Epick;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  auto exact = [](const int fk[3], const P f[3], const int gk[3], const P g[3]) {
+    int shared = 0, fi[3] = {0, 0, 0}, gj[3] = {0, 0, 0};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (fk[i] == gk[j]) { fi[shared] = i; gj[shared] = j; ++shared; }
+    if (shared == 0) return CGAL::do_intersect(K::Triangle_3(f[0], f[1], f[2]), K::Triangle_3(g[0], g[1], g[2]));
+    if (shared == 1) {
+      const int i = fi[0], j = gj[0];
+      return CGAL::do_intersect(K::Triangle_3(f[0], f[1], f[2]), K::Segment_3(g[(j + 1) % 3], g[(j + 2) % 3])) ||
+             CGAL::do_intersect(K::Triangle_3(g[0], g[1], g[2]), K::Segment_3(f[(i + 1) % 3], f[(i + 2) % 3]));
+    }
+    if (shared == 2) {
+      const int c = 3 - fi[0] - fi[1], d = 3 - gj[0] - gj[1];
+      return CGAL::coplanar(f[fi[0]], f[fi[1]], f[c], g[d]) &&
+             CGAL::coplanar_orientation(f[fi[0]], f[fi[1]], f[c], g[d]) == CGAL::POSITIVE;
+    }
+    return true;
+  };
+  std::size_t pairs = 0, intersecting = 0, certified = 0, flat_pairs = 0, flat_certified = 0;
+  auto check = [&](const std::vector<P>& pts, const std::vector<std::array<int, 3>>& tris, bool flat) {
+    for (std::size_t a = 0; a < tris.size(); ++a)
+      for (std::size_t b = a + 1; b < tris.size(); ++b) {
+        const int* fk = tris[a].data();
+        const int* gk = tris[b].data();
+        const P f[3] = {pts[fk[0]], pts[fk[1]], pts[fk[2]]};
+        const P g[3] = {pts[gk[0]], pts[gk[1]], pts[gk[2]]};
+        if (CGAL::collinear(f[0], f[1], f[2]) || CGAL::collinear(g[0], g[1], g[2])) continue;
+        const bool expected = exact(fk, f, gk, g);
+        ASSERT_EQ(I::triangles_intersect(fk, f, gk, g), expected) << "pair " << a << " " << b;
+        ++pairs;
+        intersecting += expected;
+        // which certificate applies, and whether it answered
+        int shared = 0, fi[2] = {0, 0}, gj[2] = {0, 0};
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            if (fk[i] == gk[j] && shared < 2) { fi[shared] = i; gj[shared] = j; ++shared; }
+        bool decided = false;
+        if (shared == 0) decided = I::certify::apart_disjoint(f, g);
+        else if (shared == 1) decided = I::certify::apart_beside_vertex(f, fi[0], g, gj[0]);
+        else {
+          const int c = 3 - fi[0] - fi[1];
+          const int d = 3 - gj[0] - gj[1];
+          decided = I::certify::apart_across_edge(f[fi[0]], f[fi[1]], f[c], g[d]);
+        }
+        if (decided) {
+          EXPECT_FALSE(expected);
+        }
+        certified += decided;
+        if (flat) {
+          ++flat_pairs;
+          flat_certified += decided;
+        }
+      }
+  };
+  for (int trial = 0; trial < 300; ++trial) {
+    // a fan of 7 to 12 triangles around a centre, its ring in a tilted plane
+    // given by rounded coordinates (as midpoint subdivision leaves them),
+    // sometimes folded (one ring point pulled across) or lifted off the plane
+    const int k = 7 + trial % 6;
+    const double ax = unit(rng), ay = unit(rng), az = 1 + unit(rng);
+    const int mode = trial % 4;  // 0 flat, 1 lifted by 1e-12, 2 folded, 3 spread out of the plane
+    std::vector<P> pts{P(0.1 * unit(rng), 0.1 * unit(rng), 0.)};
+    for (int i = 0; i < k; ++i) {
+      double t = 2 * CGAL_PI * (i + 0.3 * unit(rng)) / k;
+      if (mode == 2 && i == 2) t = 2 * CGAL_PI * 0.5 / k;  // folds back over its neighbour
+      const double x = std::cos(t) * (1 + 0.3 * unit(rng)), y = std::sin(t) * (1 + 0.3 * unit(rng));
+      double z = (ax * x + ay * y) / az;  // on the plane, rounded
+      if (mode == 1) z += 1e-12 * unit(rng);
+      if (mode == 3) z += 0.2 * unit(rng);
+      pts.emplace_back(x, y, z);
+    }
+    // midpoints of the ring edges: nearly, not exactly, coplanar
+    for (int i = 1; i <= k; ++i) {
+      const P& p = pts[i];
+      const P& q = pts[i % k + 1];
+      pts.emplace_back((p.x() + q.x()) / 2, (p.y() + q.y()) / 2, (p.z() + q.z()) / 2);
+    }
+    std::vector<std::array<int, 3>> tris;
+    for (int i = 1; i <= k; ++i) {
+      const int m = k + i;  // midpoint of ring edge i
+      tris.push_back({0, i, m});
+      tris.push_back({0, m, i % k + 1});
+    }
+    // and a few loose triangles nearby (sharing nothing or a point)
+    for (int r = 0; r < 4; ++r) {
+      const int base = int(pts.size());
+      for (int c = 0; c < 3; ++c) {
+        const double x = 1.5 * unit(rng), y = 1.5 * unit(rng);
+        double z = (ax * x + ay * y) / az;
+        if (r % 2) z += 0.3 * unit(rng);
+        pts.emplace_back(x, y, z);
+      }
+      tris.push_back({base, base + 1, base + 2});
+    }
+    check(pts, tris, mode == 0);
+  }
+  std::fprintf(stderr, "pairs %zu, intersecting %zu, decided by a certificate %zu (flat fans: %zu of %zu)\n", pairs,
+               intersecting, certified, flat_certified, flat_pairs);
+  EXPECT_GT(intersecting, 0u);  // folds and crossings are there
+  EXPECT_GT(certified, pairs / 4);
+  // on flat fans the certificates decide most pairs (else the exact predicates would)
+  EXPECT_GT(flat_certified, flat_pairs / 2) << flat_certified << " of " << flat_pairs;
 }

@@ -15,15 +15,115 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/intersections.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace mrepair {
 namespace internal {
 
 using Epick_point = CGAL::Epick::Point_3;
 
+// ---- certificates in doubles ---------------------------------------------------
+// On a flat or finely subdivided surface (CAD faces, midpoint-subdivided parts)
+// the four points of an orientation test are nearly coplanar, the filters of
+// the exact predicates cannot decide, and every neighbouring pair is decided in
+// exact arithmetic (8 s of a 10 s report on a 1M-face blade part). Most such
+// pairs lie apart by a wide margin in another direction: a plane through the
+// shared vertex between the two fans, the two normals of an unfolded edge, an
+// axis between two disjoint triangles. The tests below evaluate that in
+// doubles and answer only when the value clears its rounding error by a factor
+// of about 1000 (a bound sum(|terms|) x 1e-12, against at most about 12
+// rounding errors of 1.1e-16 per term); otherwise they return false and the
+// exact predicates decide, so the answers are those of the exact code.
+namespace certify {
+
+struct D3
+{
+  double x, y, z;
+};
+inline D3 d3(const Epick_point& p) { return {p.x(), p.y(), p.z()}; }
+inline D3 minus(const D3& a, const D3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline double dot(const D3& a, const D3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline D3 cross(const D3& a, const D3& b)
+{
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double l1(const D3& a) { return std::abs(a.x) + std::abs(a.y) + std::abs(a.z); }
+constexpr double margin = 1e-12;
+
+// m . x is surely positive (x: a difference of two input points)
+inline bool surely_positive(const D3& m, const D3& x) { return dot(m, x) > margin * l1(m) * l1(x); }
+
+/// triangles (u, w, c) and (w, u, d) surely do not overlap: their normals
+/// surely point opposite ways (then they are not coplanar, and meet only
+/// along uw, or they lie on both sides of uw).
+inline bool apart_across_edge(const Epick_point& u, const Epick_point& w, const Epick_point& c,
+                              const Epick_point& d)
+{
+  const D3 pu = d3(u), a = minus(d3(w), pu), b = minus(d3(c), pu), e = minus(d3(d), pu);
+  const double scale = l1(a) * l1(a) * l1(b) * l1(e);
+  return dot(cross(a, b), cross(a, e)) < -margin * scale;
+}
+
+/// triangles `f` and `g` sharing only f[i] == g[j] surely meet nowhere else:
+/// a plane through the shared vertex has f's two other vertices surely on
+/// one side and g's surely on the other (then f minus the vertex lies in one
+/// open half-space and g minus it in the other).
+inline bool apart_beside_vertex(const Epick_point f[3], int i, const Epick_point g[3], int j)
+{
+  const D3 v = d3(f[i]);
+  const D3 f1 = minus(d3(f[(i + 1) % 3]), v), f2 = minus(d3(f[(i + 2) % 3]), v);
+  const D3 g1 = minus(d3(g[(j + 1) % 3]), v), g2 = minus(d3(g[(j + 2) % 3]), v);
+  const double nf1 = std::sqrt(dot(f1, f1)), nf2 = std::sqrt(dot(f2, f2));
+  const double ng1 = std::sqrt(dot(g1, g1)), ng2 = std::sqrt(dot(g2, g2));
+  if (!(nf1 > 0 && nf2 > 0 && ng1 > 0 && ng2 > 0)) return false;
+  // the normal: from the middle direction of g's corner to that of f's
+  const D3 m = {f1.x / nf1 + f2.x / nf2 - g1.x / ng1 - g2.x / ng2,
+                f1.y / nf1 + f2.y / nf2 - g1.y / ng1 - g2.y / ng2,
+                f1.z / nf1 + f2.z / nf2 - g1.z / ng1 - g2.z / ng2};
+  const D3 neg = {-m.x, -m.y, -m.z};
+  return surely_positive(m, f1) && surely_positive(m, f2) && surely_positive(neg, g1) &&
+         surely_positive(neg, g2);
+}
+
+/// triangles sharing no vertex surely do not meet: an axis (either normal,
+/// or the line between the centroids) on which every vertex of one is surely
+/// below every vertex of the other.
+inline bool apart_disjoint(const Epick_point f[3], const Epick_point g[3])
+{
+  const D3 o = d3(f[0]);
+  D3 fp[3], gp[3];
+  for (int k = 0; k < 3; ++k) {
+    fp[k] = minus(d3(f[k]), o);
+    gp[k] = minus(d3(g[k]), o);
+  }
+  // along m, every vertex of g surely beyond every vertex of f: each value
+  // m . p is off by at most about 5 roundings of l1(m) l1(p)
+  double lf = 0, lg = 0;
+  for (int k = 0; k < 3; ++k) {
+    lf = std::max(lf, l1(fp[k]));
+    lg = std::max(lg, l1(gp[k]));
+  }
+  auto separates = [&](const D3& m) {
+    const double f_max = std::max({dot(m, fp[0]), dot(m, fp[1]), dot(m, fp[2])});
+    const double g_min = std::min({dot(m, gp[0]), dot(m, gp[1]), dot(m, gp[2])});
+    return g_min - f_max > margin * l1(m) * (lf + lg);
+  };
+  auto either_way = [&](const D3& m) { return separates(m) || separates(D3{-m.x, -m.y, -m.z}); };
+  const D3 nf = cross(fp[1], fp[2]);
+  const D3 ng = cross(minus(gp[1], gp[0]), minus(gp[2], gp[0]));
+  const D3 cf = {fp[0].x + fp[1].x + fp[2].x, fp[0].y + fp[1].y + fp[2].y, fp[0].z + fp[1].z + fp[2].z};
+  const D3 cg = {gp[0].x + gp[1].x + gp[2].x, gp[0].y + gp[1].y + gp[2].y, gp[0].z + gp[1].z + gp[2].z};
+  return either_way(minus(cg, cf)) || either_way(nf) || either_way(ng);
+}
+
+}  // namespace certify
+
 /// two triangles (u, w, c) and (w, u, d) sharing the edge uw overlap.
 inline bool overlap_across_shared_edge(const Epick_point& u, const Epick_point& w,
                                        const Epick_point& c, const Epick_point& d)
 {
+  if (certify::apart_across_edge(u, w, c, d)) return false;
   return CGAL::coplanar(u, w, c, d) && CGAL::coplanar_orientation(u, w, c, d) == CGAL::POSITIVE;
 }
 
@@ -32,6 +132,7 @@ inline bool intersect_beside_shared_vertex(const Epick_point f[3], int i, const 
                                            int j)
 {
   using K = CGAL::Epick;
+  if (certify::apart_beside_vertex(f, i, g, j)) return false;
   // quick exits with the exact orientation predicate: an opposite segment
   // strictly on one side of the other triangle's plane misses it
   const Epick_point& gd = g[(j + 1) % 3];
@@ -51,6 +152,7 @@ inline bool intersect_beside_shared_vertex(const Epick_point f[3], int i, const 
 inline bool disjoint_triangles_intersect(const Epick_point f[3], const Epick_point g[3])
 {
   using K = CGAL::Epick;
+  if (certify::apart_disjoint(f, g)) return false;
   return CGAL::do_intersect(K::Triangle_3(f[0], f[1], f[2]), K::Triangle_3(g[0], g[1], g[2]));
 }
 
