@@ -106,7 +106,7 @@ public:
     }
     // squared distance from p to the slabs of each axis, shrunk by a hair so
     // that the rounding of index() cannot put a point in a cell measured beyond it
-    const double slack = 1e-9 * cell_;
+    const double slack = 1e-7 * cell_;  // index() of a coordinate 1e6 cells out is off by ~1e-10 cell
     std::array<std::array<double, max_span>, 3> gap2;
     for (int d = 0; d < 3; ++d)
       for (long c = lo[d]; c <= hi[d]; ++c) {
