@@ -373,8 +373,7 @@ void input_boundary(const std::string& input, mrepair::Report& before)
 {
   Mesh m;
   if (mrepair::read_polygon_mesh(input, m).status != mrepair::Status::ok) return;
-  before.add("boundary_edges", std::size_t(std::count_if(halfedges(m).begin(), halfedges(m).end(),
-                                                          [&](Mesh::Halfedge_index h) { return is_border(h, m); })));
+  before.add("boundary_edges", mrepair::internal::count_boundary(m).first);
 }
 
 mrepair::bench::Measurement run_mrepair_gaps(const std::string& input)

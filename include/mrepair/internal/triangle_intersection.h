@@ -14,6 +14,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/intersections.h>
+#include <mrepair/internal/utility.h>
 
 #include <algorithm>
 #include <cmath>
@@ -37,22 +38,11 @@ using Epick_point = CGAL::Epick::Point_3;
 // exact predicates decide, so the answers are those of the exact code.
 namespace certify {
 
-struct D3
-{
-  double x, y, z;
-};
-inline D3 d3(const Epick_point& p) { return {p.x(), p.y(), p.z()}; }
-inline D3 minus(const D3& a, const D3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline double dot(const D3& a, const D3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline D3 cross(const D3& a, const D3& b)
-{
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline double l1(const D3& a) { return std::abs(a.x) + std::abs(a.y) + std::abs(a.z); }
+inline double l1(const Vec3& a) { return std::abs(a[0]) + std::abs(a[1]) + std::abs(a[2]); }
 constexpr double margin = 1e-12;
 
 // m . x is surely positive (x: a difference of two input points)
-inline bool surely_positive(const D3& m, const D3& x) { return dot(m, x) > margin * l1(m) * l1(x); }
+inline bool surely_positive(const Vec3& m, const Vec3& x) { return dot(m, x) > margin * l1(m) * l1(x); }
 
 /// triangles (u, w, c) and (w, u, d) surely do not overlap: their normals
 /// surely point opposite ways (then they are not coplanar, and meet only
@@ -60,7 +50,7 @@ inline bool surely_positive(const D3& m, const D3& x) { return dot(m, x) > margi
 inline bool apart_across_edge(const Epick_point& u, const Epick_point& w, const Epick_point& c,
                               const Epick_point& d)
 {
-  const D3 pu = d3(u), a = minus(d3(w), pu), b = minus(d3(c), pu), e = minus(d3(d), pu);
+  const Vec3 pu = to_vec3(u), a = sub(to_vec3(w), pu), b = sub(to_vec3(c), pu), e = sub(to_vec3(d), pu);
   const double scale = l1(a) * l1(a) * l1(b) * l1(e);
   return dot(cross(a, b), cross(a, e)) < -margin * scale;
 }
@@ -71,19 +61,16 @@ inline bool apart_across_edge(const Epick_point& u, const Epick_point& w, const 
 /// open half-space and g minus it in the other).
 inline bool apart_beside_vertex(const Epick_point f[3], int i, const Epick_point g[3], int j)
 {
-  const D3 v = d3(f[i]);
-  const D3 f1 = minus(d3(f[(i + 1) % 3]), v), f2 = minus(d3(f[(i + 2) % 3]), v);
-  const D3 g1 = minus(d3(g[(j + 1) % 3]), v), g2 = minus(d3(g[(j + 2) % 3]), v);
+  const Vec3 v = to_vec3(f[i]);
+  const Vec3 f1 = sub(to_vec3(f[(i + 1) % 3]), v), f2 = sub(to_vec3(f[(i + 2) % 3]), v);
+  const Vec3 g1 = sub(to_vec3(g[(j + 1) % 3]), v), g2 = sub(to_vec3(g[(j + 2) % 3]), v);
   const double nf1 = std::sqrt(dot(f1, f1)), nf2 = std::sqrt(dot(f2, f2));
   const double ng1 = std::sqrt(dot(g1, g1)), ng2 = std::sqrt(dot(g2, g2));
   if (!(nf1 > 0 && nf2 > 0 && ng1 > 0 && ng2 > 0)) return false;
   // the normal: from the middle direction of g's corner to that of f's
-  const D3 m = {f1.x / nf1 + f2.x / nf2 - g1.x / ng1 - g2.x / ng2,
-                f1.y / nf1 + f2.y / nf2 - g1.y / ng1 - g2.y / ng2,
-                f1.z / nf1 + f2.z / nf2 - g1.z / ng1 - g2.z / ng2};
-  const D3 neg = {-m.x, -m.y, -m.z};
-  return surely_positive(m, f1) && surely_positive(m, f2) && surely_positive(neg, g1) &&
-         surely_positive(neg, g2);
+  const Vec3 m = sub(add(mul(f1, 1 / nf1), mul(f2, 1 / nf2)), add(mul(g1, 1 / ng1), mul(g2, 1 / ng2)));
+  return surely_positive(m, f1) && surely_positive(m, f2) && surely_positive(neg(m), g1) &&
+         surely_positive(neg(m), g2);
 }
 
 /// triangles sharing no vertex surely do not meet: an axis (either normal,
@@ -91,11 +78,11 @@ inline bool apart_beside_vertex(const Epick_point f[3], int i, const Epick_point
 /// below every vertex of the other.
 inline bool apart_disjoint(const Epick_point f[3], const Epick_point g[3])
 {
-  const D3 o = d3(f[0]);
-  D3 fp[3], gp[3];
+  const Vec3 o = to_vec3(f[0]);
+  Vec3 fp[3], gp[3];
   for (int k = 0; k < 3; ++k) {
-    fp[k] = minus(d3(f[k]), o);
-    gp[k] = minus(d3(g[k]), o);
+    fp[k] = sub(to_vec3(f[k]), o);
+    gp[k] = sub(to_vec3(g[k]), o);
   }
   // along m, every vertex of g surely beyond every vertex of f: each value
   // m . p is off by at most about 5 roundings of l1(m) l1(p)
@@ -104,17 +91,16 @@ inline bool apart_disjoint(const Epick_point f[3], const Epick_point g[3])
     lf = std::max(lf, l1(fp[k]));
     lg = std::max(lg, l1(gp[k]));
   }
-  auto separates = [&](const D3& m) {
+  auto separates = [&](const Vec3& m) {
     const double f_max = std::max({dot(m, fp[0]), dot(m, fp[1]), dot(m, fp[2])});
     const double g_min = std::min({dot(m, gp[0]), dot(m, gp[1]), dot(m, gp[2])});
     return g_min - f_max > margin * l1(m) * (lf + lg);
   };
-  auto either_way = [&](const D3& m) { return separates(m) || separates(D3{-m.x, -m.y, -m.z}); };
-  const D3 nf = cross(fp[1], fp[2]);
-  const D3 ng = cross(minus(gp[1], gp[0]), minus(gp[2], gp[0]));
-  const D3 cf = {fp[0].x + fp[1].x + fp[2].x, fp[0].y + fp[1].y + fp[2].y, fp[0].z + fp[1].z + fp[2].z};
-  const D3 cg = {gp[0].x + gp[1].x + gp[2].x, gp[0].y + gp[1].y + gp[2].y, gp[0].z + gp[1].z + gp[2].z};
-  return either_way(minus(cg, cf)) || either_way(nf) || either_way(ng);
+  auto either_way = [&](const Vec3& m) { return separates(m) || separates(neg(m)); };
+  const Vec3 nf = cross(fp[1], fp[2]);
+  const Vec3 ng = cross(sub(gp[1], gp[0]), sub(gp[2], gp[0]));
+  const Vec3 cf = add(add(fp[0], fp[1]), fp[2]), cg = add(add(gp[0], gp[1]), gp[2]);
+  return either_way(sub(cg, cf)) || either_way(nf) || either_way(ng);
 }
 
 }  // namespace certify

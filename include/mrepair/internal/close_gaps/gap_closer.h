@@ -207,7 +207,7 @@ public:
     // border halfedges in one pass; a valid mesh has faces of degree >= 3, so it
     // is a triangle mesh exactly when its inner halfedges are 3 per face.
     std::vector<halfedge_descriptor> border;
-    const std::size_t nh = collect_border(border);
+    const std::size_t nh = collect_border_halfedges(tm, border);
 #ifndef NDEBUG
     const bool valid = CGAL::is_valid_polygon_mesh(tm);  // O(n) and slow: debug builds only
 #else
@@ -413,12 +413,6 @@ private:
     for (vertex_descriptor v : vertices(tm_))
       if (!add(box, v)) return false;
     return finite;
-  }
-
-  // border halfedges (in halfedge order); returns the number of halfedges.
-  std::size_t collect_border(std::vector<halfedge_descriptor>& out) const
-  {
-    return collect_border_halfedges(tm_, out);
   }
 
   // idmap_ is not initialised: 0 means "no id yet", which is also what an
