@@ -17,7 +17,9 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <atomic>
 #include <memory>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -61,7 +63,12 @@ class Reference_surface
   Seg_vec seg_geo_;
   std::vector<int> tri_of_prim_, prim_of_tri_;  // tree primitive <-> triangle index
   std::vector<int> seg_of_prim_, prim_of_seg_;
-  std::unique_ptr<Tri_tree> tri_tree_;
+  // The triangle tree is only the fallback of the local descent (a vertex
+  // that moved farther than its target length), which most runs never take:
+  // it is built on first use (a third of the setup at 1M faces).
+  mutable std::unique_ptr<Tri_tree> tri_tree_;
+  mutable std::atomic<bool> tri_tree_ready_{false};
+  mutable std::mutex tri_tree_mutex_;
   std::unique_ptr<Seg_tree> seg_tree_;
 
   static K::Point_3 kp(const Vec3& p) { return K::Point_3(p.x, p.y, p.z); }
@@ -120,12 +127,8 @@ public:
       seg_geo_.emplace_back(kp(points[sg[0]]), kp(points[sg[1]]));
     }
     tri_tree_.reset();
+    tri_tree_ready_.store(false);
     seg_tree_.reset();
-    if (!tri_geo_.empty()) {
-      tri_tree_.reset(new Tri_tree(tri_geo_.cbegin(), tri_geo_.cend()));
-      tri_tree_->build();
-      tri_tree_->accelerate_distance_queries();
-    }
     if (!seg_geo_.empty()) {
       seg_tree_.reset(new Seg_tree(seg_geo_.cbegin(), seg_geo_.cend()));
       seg_tree_->build();
@@ -133,7 +136,22 @@ public:
     }
   }
 
-  bool has_surface() const { return tri_tree_ != nullptr; }
+  bool has_surface() const { return !tri_geo_.empty(); }
+
+  // thread-safe: relaxation projects in parallel
+  const Tri_tree& triangle_tree() const
+  {
+    if (!tri_tree_ready_.load(std::memory_order_acquire)) {
+      std::lock_guard<std::mutex> lock(tri_tree_mutex_);
+      if (!tri_tree_ready_.load(std::memory_order_relaxed)) {
+        tri_tree_.reset(new Tri_tree(tri_geo_.cbegin(), tri_geo_.cend()));
+        tri_tree_->build();
+        tri_tree_->accelerate_distance_queries();
+        tri_tree_ready_.store(true, std::memory_order_release);
+      }
+    }
+    return *tri_tree_;
+  }
   bool has_lines() const { return seg_tree_ != nullptr; }
 
   /// closest point of the input surface to `q`; `size` gets the sizing field there.
@@ -187,18 +205,31 @@ public:
       int cur = hint, best = -1;
       double bd = std::numeric_limits<double>::infinity(), bu = 0, bv = 0, bw = 0;
       Vec3 bp;
+      // Points whose star has been evaluated: a triangle with such a corner
+      // was evaluated already, and evaluating it again never changes the
+      // strict minimum (neighbouring stars overlap in most of their triangles).
+      int done[48];
+      int ndone = 0;
+      auto is_done = [&](int p) {
+        for (int i = 0; i < ndone; ++i)
+          if (done[i] == p) return true;
+        return false;
+      };
       for (int step = 0; step < 16; ++step) {
         int before = best;
         for (int k = 0; k < 3; ++k) {
           int pv = triangles[cur][k];
+          if (is_done(pv)) continue;
           for (int j = star_begin[pv]; j < star_begin[pv + 1]; ++j) {
             int t = star[j];
             const auto& tr = triangles[t];
+            if (is_done(tr[0]) || is_done(tr[1]) || is_done(tr[2])) continue;
             double u, v, w;
             Vec3 p = closest_on_triangle(q, points[tr[0]], points[tr[1]], points[tr[2]], u, v, w);
             double d = sqlen(p - q);
             if (d < bd) { bd = d; best = t; bp = p; bu = u; bv = v; bw = w; }
           }
+          if (ndone < 48) done[ndone++] = pv;  // when full, stars are evaluated again
         }
         if (best == before) break;
         cur = best;
@@ -217,9 +248,10 @@ public:
   Vec3 project_surface_tree(const Vec3& q, double& size, int& hint) const
   {
     const int ph = hint >= 0 && hint < int(triangles.size()) ? prim_of_tri_[hint] : -1;
-    auto pp = ph >= 0 ? tri_tree_->closest_point_and_primitive(
+    const Tri_tree& tree = triangle_tree();
+    auto pp = ph >= 0 ? tree.closest_point_and_primitive(
                             kp(q), std::make_pair(tri_geo_[ph].vertex(0), tri_geo_.cbegin() + ph))
-                      : tri_tree_->closest_point_and_primitive(kp(q));
+                      : tree.closest_point_and_primitive(kp(q));
     std::size_t i = static_cast<std::size_t>(tri_of_prim_[pp.second - tri_geo_.cbegin()]);
     hint = static_cast<int>(i);
     Vec3 p = vp(pp.first);
