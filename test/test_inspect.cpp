@@ -746,3 +746,86 @@ TEST(Inspect_issue_17, pair_certificates_agree_with_the_exact_predicates)
   // on flat fans the certificates decide most pairs (else the exact predicates would)
   EXPECT_GT(flat_certified, flat_pairs / 2) << flat_certified << " of " << flat_pairs;
 }
+
+// Issue 17: the counter skips the pairs that share a vertex whose fan it
+// certifies flat (one consistently oriented fan projecting one-to-one). A
+// folded fan, two fans pinched at one vertex and a fan winding twice around
+// its centre must not be certified, and the count stays the exact one.
+TEST(Inspect_issue_17, flat_fan_certificates_keep_the_exact_count)
+{
+  namespace I = mrepair::internal;
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  std::mt19937 rng(1717);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const std::size_t n = 24;
+  Soup s = grid(n, n);
+  for (Point& p : s.points) p = Point(p.x() + 0.2 * u(rng), p.y() + 0.2 * u(rng), 0.3 * u(rng));
+  // folds: interior vertices pulled in the plane across a neighbour
+  std::vector<std::size_t> folded;
+  for (std::size_t k = 0; k < 6; ++k) {
+    const std::size_t v = (3 + 3 * k) * (n + 1) + 4 + 3 * k;
+    const Point& p = s.points[v];
+    s.points[v] = Point(p.x() + 1.6, p.y() + 0.1, p.z());
+    folded.push_back(v);
+  }
+  // a fan of 12 triangles whose ring turns twice around its centre
+  const std::size_t twice = s.points.size();
+  s.points.emplace_back(40., 0., 0.);
+  for (int i = 0; i < 12; ++i) {
+    const double t = 4 * CGAL_PI * i / 12, r = 1 + 0.3 * (i % 2);
+    s.points.emplace_back(40. + r * std::cos(t), r * std::sin(t), 0.05 * u(rng));
+  }
+  for (std::size_t i = 0; i < 12; ++i) s.polygons.push_back({twice, twice + 1 + i, twice + 1 + (i + 1) % 12});
+  const Soup mesh_part = s;
+
+  // a second sheet pinched at an interior grid vertex, lying across its fan
+  const std::size_t pinch = 12 * (n + 1) + 12, base = s.points.size();
+  const Point c = s.points[pinch];
+  for (int i = 0; i < 3; ++i) {
+    const double t = 0.3 + 0.8 * i;
+    s.points.emplace_back(c.x() + std::cos(t), c.y() + std::sin(t), c.z() + 0.05);
+  }
+  s.polygons.push_back({pinch, base, base + 1});
+  s.polygons.push_back({pinch, base + 1, base + 2});
+
+  // which vertices are certified
+  I::Surface_arrays a;
+  std::size_t invalid = 0;
+  ASSERT_TRUE(I::build_soup_arrays(s.points, s.polygons, a, invalid));
+  I::certify_flat_stars(a);
+  ASSERT_EQ(a.flat_star.size(), s.points.size());
+  std::size_t flat = 0;
+  for (unsigned char f : a.flat_star) flat += f;
+  EXPECT_GT(flat, s.points.size() / 2);  // the certificate answers on most of a rough surface
+  for (std::size_t v : folded) EXPECT_EQ(a.flat_star[v], 0) << "folded vertex " << v;
+  EXPECT_EQ(a.flat_star[twice], 0);
+  EXPECT_EQ(a.flat_star[pinch], 0);
+
+  // the counts: the soup's against every pair tested exactly, the mesh's
+  // against CGAL
+  std::size_t expected = 0;
+  for (std::size_t f = 0; f < s.polygons.size(); ++f)
+    for (std::size_t g = f + 1; g < s.polygons.size(); ++g) {
+      std::size_t fk[3], gk[3];
+      I::Epick_point fp[3], gp[3];
+      for (int i = 0; i < 3; ++i) {
+        fk[i] = s.polygons[f][i];
+        gk[i] = s.polygons[g][i];
+        fp[i] = s.points[fk[i]];
+        gp[i] = s.points[gk[i]];
+      }
+      expected += I::triangles_intersect(fk, fp, gk, gp);
+    }
+  const mrepair::Inspection_report rs = mrepair::inspect_polygon_soup(s.points, s.polygons);
+  ASSERT_TRUE(rs.self_intersections_counted);
+  EXPECT_GT(expected, 0u);
+  EXPECT_EQ(rs.self_intersecting_pairs, expected);
+
+  const Surface_mesh m = to_mesh<Surface_mesh>(mesh_part);
+  std::vector<std::pair<Surface_mesh::Face_index, Surface_mesh::Face_index>> cgal_pairs;
+  PMP::self_intersections(m, std::back_inserter(cgal_pairs));
+  const mrepair::Inspection_report rm = mrepair::inspect(m);
+  ASSERT_TRUE(rm.self_intersections_counted);
+  EXPECT_GT(cgal_pairs.size(), 0u);
+  EXPECT_EQ(rm.self_intersecting_pairs, cgal_pairs.size());
+}

@@ -137,8 +137,7 @@ Inspection_report inspect_polygon_soup(const PointRange& points, const PolygonRa
   internal::Surface_analysis analysis(a, t, r);
   analysis.run(nullptr);
   const bool count_si = internal::get_or<bool>(np, internal_np::count_self_intersections, true);
-  internal::keep_for_self_intersections(a);
-  internal::count_self_intersections(analysis, count_si, visitor, r);
+  internal::count_self_intersections(a, analysis, count_si, visitor, r);
   internal::finish_status(r, analysis.non_finite_referenced);
   return r;
 }
@@ -192,8 +191,7 @@ Inspection_report inspect(const PolygonMesh& pmesh,
     analysis.run(&loops);
     non_finite_referenced = analysis.non_finite_referenced;
     internal::free_memory(loops);
-    internal::keep_for_self_intersections(a);
-    internal::count_self_intersections(analysis, count_si, visitor, r);
+    internal::count_self_intersections(a, analysis, count_si, visitor, r);
   }
   internal::finish_status(r, non_finite_referenced);
   return r;

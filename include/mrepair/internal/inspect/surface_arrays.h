@@ -40,6 +40,8 @@ struct Surface_arrays
   std::vector<Inspect_index> edge_v;   // 2 per edge
   std::vector<Inspect_index> edge_off{0};
   std::vector<Inspect_index> edge_corners;
+  // per vertex, filled for the self-intersection counter (certify_flat_stars)
+  std::vector<unsigned char> flat_star;
 
   std::size_t num_faces() const { return face_off.size() - 1; }
   std::size_t num_edges() const { return edge_off.size() - 1; }
