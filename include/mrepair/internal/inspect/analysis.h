@@ -261,6 +261,34 @@ private:
     return crit;
   }
 
+  // A threshold below 90 degrees on corner angles atan2(len, d), compared
+  // through its tangent: below it when len < d tan(t). Within 1e-9 of the
+  // threshold, and for non-finite or degenerate values, the angle itself
+  // decides (atan2 once, kept in `angle`), so the answers are the atan2 ones;
+  // most corners never need it (atan2 was a third of the face pass).
+  struct Angle_threshold
+  {
+    double degrees = 0, tangent = 0;
+    bool by_tangent = false;
+    void set(double t)
+    {
+      degrees = t;
+      by_tangent = t > 0 && t < 89;
+      tangent = by_tangent ? std::tan(t / degrees_per_radian) : 0;
+    }
+    bool below(double len, double d, double& angle) const
+    {
+      if (by_tangent && len > 0 && std::isfinite(len) && std::isfinite(d)) {
+        if (d <= 0) return false;  // 90 degrees or more
+        const double x = d * tangent;
+        if (len < x * (1 - 1e-9)) return true;
+        if (len > x * (1 + 1e-9)) return false;
+      }
+      if (std::isnan(angle)) angle = std::atan2(len, d) * degrees_per_radian;
+      return angle < degrees;
+    }
+  };
+
   void face_pass()
   {
     const Near_degenerate_criterion crit = near_degenerate_criterion();
@@ -275,9 +303,13 @@ private:
       std::size_t triangles = 0, repeated = 0, collinear = 0, angles = 0, small = 0;
       double min_angle = std::numeric_limits<double>::infinity(), area = 0, volume = 0;
     };
-    const double small = t_.small_angle;
+    Angle_threshold skinny_t, small_t;
+    skinny_t.set(crit.skinny_angle);
+    small_t.set(t_.small_angle);
     auto acc = chunked<Acc>(nf, [&](std::size_t b, std::size_t e, Acc& s) {
       std::vector<K::Point_3> poly;
+      Angle_threshold min_t;  // the chunk's smallest angle so far
+      min_t.set(s.min_angle);
       for (std::size_t f = b; f < e; ++f) {
         const std::size_t k = a_.degree(f), c0 = a_.face_off[f];
         const Inspect_index* v = &a_.corner_v[c0];
@@ -304,13 +336,16 @@ private:
           const double d0 = -(u0[0] * u2[0] + u0[1] * u2[1] + u0[2] * u2[2]);
           const double d1 = -(u1[0] * u0[0] + u1[1] * u0[1] + u1[2] * u0[2]);
           const double d2 = -(u2[0] * u1[0] + u2[1] * u1[1] + u2[2] * u1[2]);
-          const double ang[3] = {std::atan2(len, d0) * degrees_per_radian,
-                                 std::atan2(len, d1) * degrees_per_radian,
-                                 std::atan2(len, d2) * degrees_per_radian};
+          const double d[3] = {d0, d1, d2};
           for (int i = 0; i < 3; ++i) {
-            skinny_corner_[c0 + i] = crit.is_skinny_angle(ang[i]);
-            s.min_angle = std::min(s.min_angle, ang[i]);
-            if (ang[i] < small) ++s.small;
+            double ang = std::numeric_limits<double>::quiet_NaN();  // computed when needed
+            skinny_corner_[c0 + i] = skinny_t.below(len, d[i], ang);
+            if (small_t.below(len, d[i], ang)) ++s.small;
+            if (min_t.below(len, d[i], ang)) {
+              if (std::isnan(ang)) ang = std::atan2(len, d[i]) * degrees_per_radian;
+              s.min_angle = std::min(s.min_angle, ang);
+              min_t.set(s.min_angle);
+            }
           }
           s.angles += 3;
           s.volume += (p[0] * (q[1] * w[2] - q[2] * w[1]) + p[1] * (q[2] * w[0] - q[0] * w[2]) +
