@@ -1,6 +1,7 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of isotropic_remesh / adaptive_remesh / remesh_to_face_count (issue 7).
 #include <mrepair/adaptive_remesh.h>
+#include <mrepair/internal/remesh/reference_surface.h>
 
 #include "fixtures.h"
 
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <random>
 #include <set>
 
 using namespace mrepair_test;
@@ -570,4 +572,52 @@ TEST(Remesh_armadillo, coarse_remeshing_keeps_no_self_intersections)
   expect_valid(m);
   EXPECT_LT(face_count(m), 30000u);  // 52000 input faces, coarsened
   EXPECT_FALSE(PMP::does_self_intersect<CGAL::Parallel_if_available_tag>(m));
+}
+
+// Issue 17: the reference surface builds its triangle tree on the first
+// projection that needs it (no hint, or the local descent landing farther
+// than asked), from several threads at once in the parallel relaxation.
+// Both paths give the closest point of the input.
+TEST(Remesh_issue_17, reference_tree_built_on_first_use_gives_the_closest_point)
+{
+  namespace R = mrepair::internal::remesh;
+  const Soup s = icosphere(3, 1.0);
+  R::Reference_surface ref;
+  for (const Point& p : s.points) ref.points.emplace_back(p.x(), p.y(), p.z());
+  for (const Polygon& f : s.polygons) ref.triangles.push_back({int(f[0]), int(f[1]), int(f[2])});
+  ref.on_line.assign(ref.points.size(), 0);
+  ref.sizing.assign(ref.points.size(), 0.1);
+  ref.build();
+  ASSERT_TRUE(ref.has_surface());
+  auto nearest = [&](const R::Vec3& q) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& t : ref.triangles) {
+      double u, v, w;
+      const R::Vec3 p = R::Reference_surface::closest_on_triangle(q, ref.points[t[0]], ref.points[t[1]],
+                                                                 ref.points[t[2]], u, v, w);
+      best = std::min(best, R::sqlen(p - q));
+    }
+    return std::sqrt(best);
+  };
+  const std::size_t n = 4000;
+  std::vector<R::Vec3> q(n), by_tree(n), by_descent(n);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  for (R::Vec3& x : q) x = R::Vec3(u(rng), u(rng), u(rng));
+  // concurrent first uses of the tree: no hint, and a descent from a far
+  // triangle with a tiny accepted distance
+  mrepair::internal::parallel_for_index(n, 16, [&](std::size_t i) {
+    double size = 0;
+    int hint = -1;
+    by_tree[i] = ref.project_surface(q[i], size, hint, 1.0);
+    EXPECT_GE(hint, 0);
+    EXPECT_NEAR(size, 0.1, 1e-12);
+    int far_hint = int(i % ref.triangles.size());
+    by_descent[i] = ref.project_surface(q[i], size, far_hint, 1e-9);
+  });
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d = nearest(q[i]);
+    EXPECT_NEAR(R::len(by_tree[i] - q[i]), d, 1e-9) << i;
+    EXPECT_NEAR(R::len(by_descent[i] - q[i]), d, 1e-9) << i;
+  }
 }
