@@ -12,6 +12,8 @@
 
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <tbb/global_control.h>
 
@@ -21,6 +23,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <set>
 #include <string>
 
@@ -1108,3 +1111,73 @@ TEST(Cli, polygon_meshes_are_triangulated)
 }
 
 }  // namespace
+
+// Issue 17: on a large Surface_mesh the components are labelled by a parallel
+// union-find. Same numbering (order of each component's first face), counts
+// and areas as a sequential search, with removed faces in the index range.
+TEST(Clean_issue_17, parallel_component_labels_match_the_sequential_search)
+{
+  namespace CP = mrepair::internal::clean_pipeline;
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  // a 200 x 200 grid (80,000 faces) and 300 small grids beside it, merged so
+  // that the islands' faces come first, between and after the big one's
+  Soup s = grid(3, 2, 0.1);
+  for (int k = 1; k < 150; ++k) s = merged(s, translated(grid(1 + k % 4, 2, 0.1), 0.5 * k, -5., 0.));
+  s = merged(s, grid(200, 200, 0.05));
+  for (int k = 0; k < 150; ++k) s = merged(s, translated(grid(2, 1 + k % 3, 0.1), 0.5 * k, -9., 0.));
+  Surface_mesh m = to_mesh<Surface_mesh>(s);
+  // remove a band of faces across the big grid (cuts it in two) and a few
+  // islands' faces: removed slots stay in the index range
+  std::vector<Surface_mesh::Face_index> doomed;
+  for (auto f : faces(m)) {
+    double x = 0, y = 0;
+    for (auto v : vertices_around_face(halfedge(f, m), m)) {
+      x += m.point(v).x() / 3;
+      y += m.point(v).y() / 3;
+    }
+    const Point c(x, y, 0.);
+    if (c.y() > 4.9 && c.y() < 5.05 && c.x() < 10.) doomed.push_back(f);
+    if (c.y() < -8.95 && c.y() > -9. && int(c.x()) % 7 == 0) doomed.push_back(f);
+  }
+  for (auto f : doomed) CGAL::Euler::remove_face(halfedge(f, m), m);
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  ASSERT_GE(m.num_faces(), std::size_t(65536));  // the parallel path
+
+  auto id = get(CGAL::dynamic_face_property_t<std::size_t>(), m);
+  std::vector<std::size_t> faces_of;
+  std::vector<double> area_of;
+  const std::size_t n = CP::label_components(m, m.points(), id, faces_of, area_of);
+  EXPECT_EQ(n, faces_of.size());
+
+  // the sequential reference: a search from each unlabelled face, in face order
+  std::map<Surface_mesh::Face_index, std::size_t> expected;
+  std::vector<std::size_t> count;
+  std::vector<double> area;
+  for (auto seed : faces(m)) {
+    if (expected.count(seed)) continue;
+    const std::size_t c = count.size();
+    count.push_back(0);
+    area.push_back(0.);
+    std::vector<Surface_mesh::Face_index> stack{seed};
+    expected[seed] = c;
+    while (!stack.empty()) {
+      const auto f = stack.back();
+      stack.pop_back();
+      ++count[c];
+      area[c] += PMP::face_area(f, m);
+      for (auto h : CGAL::halfedges_around_face(halfedge(f, m), m)) {
+        const auto o = opposite(h, m);
+        if (is_border(o, m) || expected.count(face(o, m))) continue;
+        expected[face(o, m)] = c;
+        stack.push_back(face(o, m));
+      }
+    }
+  }
+  ASSERT_EQ(faces_of.size(), count.size());
+  EXPECT_GT(count.size(), 300u);
+  for (std::size_t c = 0; c < count.size(); ++c) {
+    EXPECT_EQ(faces_of[c], count[c]) << c;
+    EXPECT_NEAR(area_of[c], area[c], 1e-9 * (1. + area[c])) << c;
+  }
+  for (auto f : faces(m)) EXPECT_EQ(get(id, f), expected[f]);
+}

@@ -13,14 +13,84 @@
 #include <CGAL/boost/graph/properties.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
 namespace mrepair {
 namespace internal {
 namespace clean_pipeline {
+
+/// `label_components()` on a large Surface_mesh: the faces across each edge
+/// are joined in a union-find, in parallel (lock-free: a root is linked under
+/// the smaller root by compare-and-swap, so each component's root ends as its
+/// smallest face index). Components are then numbered in the order of their
+/// smallest face, which is the order in which the sequential search meets
+/// them, and the counts and areas are summed in face order.
+template <typename PM, typename VPM, typename FaceId>
+std::size_t label_components_in_parallel(const PM& pm, const VPM& vpm, FaceId& id,
+                                         std::vector<std::size_t>& faces_of,
+                                         std::vector<double>& area_of)
+{
+  using face_descriptor = typename boost::graph_traits<PM>::face_descriptor;
+  using edge_descriptor = typename boost::graph_traits<PM>::edge_descriptor;
+  using Index = std::uint32_t;
+  const std::size_t nf = pm.num_faces();  // index range, removed faces included
+  std::unique_ptr<std::atomic<Index>[]> parent(new std::atomic<Index>[nf]);
+  parallel_for_index(nf, 16384, [&](std::size_t f) { parent[f].store(Index(f), std::memory_order_relaxed); });
+  auto find = [&](Index x) {
+    for (;;) {
+      Index p = parent[x].load(std::memory_order_relaxed);
+      if (p == x) return x;
+      const Index g = parent[p].load(std::memory_order_relaxed);
+      if (g != p) parent[x].compare_exchange_weak(p, g, std::memory_order_relaxed);  // path halving
+      x = g;
+    }
+  };
+  parallel_for_index(pm.num_edges(), 16384, [&](std::size_t i) {
+    const edge_descriptor e(static_cast<typename edge_descriptor::size_type>(i));
+    if (pm.is_removed(e)) return;
+    const auto h = halfedge(e, pm), o = opposite(h, pm);
+    if (is_border(h, pm) || is_border(o, pm)) return;
+    Index a = Index(face(h, pm)), b = Index(face(o, pm));
+    for (;;) {
+      a = find(a);
+      b = find(b);
+      if (a == b) return;
+      if (a < b) std::swap(a, b);
+      Index expected = a;  // a is a root: link it under the smaller root b
+      if (parent[a].compare_exchange_strong(expected, b, std::memory_order_relaxed)) return;
+    }
+  });
+  std::vector<Index> root(nf);
+  std::vector<double> area(nf, 0.);
+  parallel_for_index(nf, 16384, [&](std::size_t i) {
+    const face_descriptor f(static_cast<typename face_descriptor::size_type>(i));
+    if (pm.is_removed(f)) return;
+    root[i] = find(Index(i));
+    area[i] = 0.5 * norm(face_normal(halfedge(f, pm), pm, vpm));
+  });
+  faces_of.clear();
+  area_of.clear();
+  std::vector<Index> component(nf);
+  for (face_descriptor f : faces(pm)) {
+    const Index i = Index(f);
+    if (root[i] == i) {
+      component[i] = Index(faces_of.size());
+      faces_of.push_back(0);
+      area_of.push_back(0.);
+    }
+    const Index c = component[root[i]];
+    put(id, f, std::size_t(c));
+    ++faces_of[c];
+    if (std::isfinite(area[i])) area_of[c] += area[i];
+  }
+  return faces_of.size();
+}
 
 /// Face-connected components: `id` (a face property of std::size_t) gets the
 /// component index of every face; `faces_of[c]` and `area_of[c]` the face
@@ -30,6 +100,10 @@ std::size_t label_components(const PM& pm, const VPM& vpm, FaceId& id,
                              std::vector<std::size_t>& faces_of, std::vector<double>& area_of)
 {
   using face_descriptor = typename boost::graph_traits<PM>::face_descriptor;
+  if constexpr (Is_surface_mesh<PM>::value) {
+    if (pm.num_faces() >= 65536 && pm.num_faces() < std::size_t(std::uint32_t(-1)))
+      return label_components_in_parallel(pm, vpm, id, faces_of, area_of);
+  }
   const std::size_t none = std::size_t(-1);
   faces_of.clear();
   area_of.clear();
