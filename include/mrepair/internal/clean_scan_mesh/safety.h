@@ -76,15 +76,16 @@ std::size_t label_components_in_parallel(const PM& pm, const VPM& vpm, FaceId& i
   });
   faces_of.clear();
   area_of.clear();
-  std::vector<Index> component(nf);
+  // the union-find is done: a root's slot now holds its component's number
+  // (no third array at the 10M-face peak)
   for (face_descriptor f : faces(pm)) {
     const Index i = Index(f);
     if (root[i] == i) {
-      component[i] = Index(faces_of.size());
+      parent[i].store(Index(faces_of.size()), std::memory_order_relaxed);
       faces_of.push_back(0);
       area_of.push_back(0.);
     }
-    const Index c = component[root[i]];
+    const Index c = parent[root[i]].load(std::memory_order_relaxed);
     put(id, f, std::size_t(c));
     ++faces_of[c];
     if (std::isfinite(area[i])) area_of[c] += area[i];
