@@ -101,15 +101,13 @@ inline void certify_flat_stars(Surface_arrays& a)
     }
     const double nn = squared_norm(n), ln = std::sqrt(nn);
     if (!(nn > 0) || !std::isfinite(nn)) return;
-    const double l1n = std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]);
+    const double l1n = certify::l1(n);
     double turn = 0;
     for (int i = 0; i < m; ++i) {
       const Vec3 x = spoke(a.next_corner(fan[i])), y = spoke(a.prev_corner(fan[i]));
       const double o = dot(n, cross(x, y));
       // a margin of 1e-10 of the terms' size, far above their rounding error
-      const double lx = std::abs(x[0]) + std::abs(x[1]) + std::abs(x[2]);
-      const double ly = std::abs(y[0]) + std::abs(y[1]) + std::abs(y[2]);
-      if (!(o > 1e-10 * l1n * lx * ly)) return;
+      if (!(o > 1e-10 * l1n * certify::l1(x) * certify::l1(y))) return;
       turn += std::atan2(o / ln, dot(x, y) - dot(x, n) * dot(y, n) / nn);
     }
     // the angles are off by 1e-5 at most each (the margin above): one turn
