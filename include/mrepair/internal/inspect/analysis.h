@@ -133,7 +133,7 @@ private:
   void release_per_element_arrays()
   {
     free_memory(skinny_corner_, edge_len_, vertex_mean_len_, valence_, not_interior_, boundary_vertex_,
-                spiked_, referenced_, non_manifold_vertex_);
+                spiked_, referenced_, non_manifold_vertex_, vertex_corner_first_, vertex_corners_);
   }
 
   // ---- vertices ---------------------------------------------------------------
@@ -560,10 +560,11 @@ private:
     not_interior_.assign(nv, 0);
     boundary_vertex_.assign(nv, 0);
     spiked_.assign(nv, 0);
-    std::vector<double> sum(nv, 0.0);
-    std::vector<Inspect_index> cnt(nv, 0);
+    vertex_mean_len_.assign(nv, std::numeric_limits<double>::quiet_NaN());
     std::vector<double> max_dihedral(nv, -1.0);       // degrees, for the height criterion
     std::vector<unsigned char> inconsistent(nv, 0);   // no consistently oriented link
+    std::vector<double> sum(nv, 0.0);
+    std::vector<Inspect_index> cnt(nv, 0);
     for (std::size_t e = 0; e < ne; ++e) {
       const std::size_t nfe = a_.edge_off[e + 1] - a_.edge_off[e];
       const Inspect_index ends[2] = {a_.edge_v[2 * e], a_.edge_v[2 * e + 1]};
@@ -584,60 +585,72 @@ private:
         }
       }
     }
-    spikes_by_height(max_dihedral, inconsistent);
-    vertex_mean_len_.assign(nv, std::numeric_limits<double>::quiet_NaN());
-    std::size_t spiked = 0;
-    for (std::size_t v = 0; v < nv; ++v) {
+    for (std::size_t v = 0; v < nv; ++v)
       if (cnt[v]) vertex_mean_len_[v] = sum[v] / double(cnt[v]);
-      spiked += spiked_[v];
-    }
+    free_memory(sum, cnt);
+    vertex_corner_table();
+    spikes_by_height(max_dihedral, inconsistent);
+    std::size_t spiked = 0;
+    for (std::size_t v = 0; v < nv; ++v) spiked += spiked_[v];
     r_.spiked_vertices = spiked;
   }
 
+  // The corners of each vertex in corner order (a counting sort), read by the
+  // spike test and the fans of non_manifold_vertices.
+  void vertex_corner_table()
+  {
+    const std::size_t nv = a_.num_vertices, nc = a_.corner_v.size();
+    vertex_corner_first_.assign(nv + 1, 0);
+    for (std::size_t c = 0; c < nc; ++c) ++vertex_corner_first_[a_.corner_v[c]];
+    vertex_corner_first_[nv] = exclusive_scan_in_place(vertex_corner_first_);
+    vertex_corners_.resize(nc);
+    std::vector<Inspect_index> pos(vertex_corner_first_.begin(), vertex_corner_first_.end() - 1);
+    for (std::size_t c = 0; c < nc; ++c) vertex_corners_[pos[a_.corner_v[c]]++] = static_cast<Inspect_index>(c);
+  }
+  std::vector<Inspect_index> vertex_corner_first_, vertex_corners_;
+
   // The second spike criterion (spike_criterion.h, shared with relax_spikes):
   // interior vertices far above the plane of their link. Its pre-filter
-  // leaves few candidates, whose links are summed in one pass over corners.
+  // leaves the candidates; on a noisy scan they are many, so their links are
+  // summed in parallel, each over its corners in corner order (the order of
+  // one pass over all corners: same sums with any thread count).
   void spikes_by_height(const std::vector<double>& max_dihedral_deg,
                         const std::vector<unsigned char>& inconsistent)
   {
     const std::size_t nv = a_.num_vertices;
     if (!(t_.spike_height_factor > 0)) return;
     auto radians = [&](std::size_t v) { return max_dihedral_deg[v] / degrees_per_radian; };
-    std::vector<Inspect_index> slot(nv, inspect_npos);
-    std::vector<Inspect_index> candidates;
-    for (std::size_t v = 0; v < nv; ++v) {
-      if (spiked_[v] || not_interior_[v] || inconsistent[v] || !a_.finite[v]) continue;
-      // the predicate's pre-filter selects the candidates (gather runs only past it)
-      spiked_by_height(radians(v), t_.spike_height_factor, [&](Spike_link_sums&) {
-        slot[v] = static_cast<Inspect_index>(candidates.size());
-        candidates.push_back(static_cast<Inspect_index>(v));
-        return false;
-      });
-    }
-    if (candidates.empty()) return;
-    std::vector<Spike_link_sums> sums(candidates.size());
-    std::vector<unsigned char> bad(candidates.size(), 0);
-    const std::size_t nc = a_.corner_v.size();
-    for (std::size_t c = 0; c < nc; ++c) {
-      const Inspect_index k = slot[a_.corner_v[c]];
-      if (k == inspect_npos) continue;
-      const std::size_t f = a_.corner_f[c];
-      if (!face_ok_[f] || a_.face_skip[f] || repeated_[f]) {
-        bad[k] = 1;
-        continue;
+    // the candidates in vertex order, chunk by chunk
+    auto found = chunked<std::vector<Inspect_index>>(nv, [&](std::size_t b, std::size_t e,
+                                                             std::vector<Inspect_index>& out) {
+      for (std::size_t v = b; v < e; ++v) {
+        if (spiked_[v] || not_interior_[v] || inconsistent[v] || !a_.finite[v]) continue;
+        // the predicate's pre-filter selects the candidates (gather runs only past it)
+        spiked_by_height(radians(v), t_.spike_height_factor, [&](Spike_link_sums&) {
+          out.push_back(static_cast<Inspect_index>(v));
+          return false;
+        });
       }
-      // the link edges of this face: the chain from next(c) round to prev(c)
-      const double* p = a_.point(a_.corner_v[c]);
-      for (std::size_t i = a_.next_corner(c); a_.next_corner(i) != c; i = a_.next_corner(i))
-        sums[k].add(p, a_.point(a_.corner_v[i]), a_.point(a_.corner_v[a_.next_corner(i)]));
-    }
-    for (std::size_t k = 0; k < candidates.size(); ++k) {
+    });
+    std::vector<Inspect_index> candidates;
+    for (std::vector<Inspect_index>& f : found) candidates.insert(candidates.end(), f.begin(), f.end());
+    free_memory(found);
+    if (candidates.empty()) return;
+    const std::size_t nk = candidates.size();
+    parallel_for_index(nk, 1024, [&](std::size_t k) {
       const Inspect_index v = candidates[k];
-      spiked_[v] = spiked_by_height(radians(v), t_.spike_height_factor, [&](Spike_link_sums& s) {
-        s = sums[k];
-        return !bad[k];
+      spiked_[v] = spiked_by_height(radians(v), t_.spike_height_factor, [&](Spike_link_sums& sums) {
+        for (Inspect_index i = vertex_corner_first_[v]; i < vertex_corner_first_[v + 1]; ++i) {
+          const std::size_t c = vertex_corners_[i], f = a_.corner_f[c];
+          if (!face_ok_[f] || a_.face_skip[f] || repeated_[f]) return false;
+          // the link edges of this face: the chain from next(c) round to prev(c)
+          const double* p = a_.point(a_.corner_v[c]);
+          for (std::size_t j = a_.next_corner(c); a_.next_corner(j) != c; j = a_.next_corner(j))
+            sums.add(p, a_.point(a_.corner_v[j]), a_.point(a_.corner_v[a_.next_corner(j)]));
+        }
+        return true;
       });
-    }
+    });
   }
 
   // RameshCleaner 3.6. Edge e is short when |e| < eps * l_g (zero edge) or
@@ -716,28 +729,21 @@ private:
   // edges incident to the vertex, form more than one group (fan).
   void non_manifold_vertices()
   {
-    const std::size_t nv = a_.num_vertices, nc = a_.corner_v.size();
-    std::vector<Inspect_index> off(nv + 1, 0);
-    for (std::size_t c = 0; c < nc; ++c)
-      if (a_.corner_e[c] != inspect_npos) ++off[a_.corner_v[c]];
-    Inspect_index total = exclusive_scan_in_place(off);
-    off[nv] = total;
-    std::vector<Inspect_index> vc(total);
-    {
-      std::vector<Inspect_index> pos(off.begin(), off.end() - 1);
-      for (std::size_t c = 0; c < nc; ++c)
-        if (a_.corner_e[c] != inspect_npos) vc[pos[a_.corner_v[c]]++] = static_cast<Inspect_index>(c);
-    }
+    const std::size_t nv = a_.num_vertices;
     non_manifold_vertex_.assign(nv, 0);
     auto acc = chunked<std::size_t>(nv, [&](std::size_t b, std::size_t e, std::size_t& s) {
       std::vector<std::pair<Inspect_index, Inspect_index>> link; // (edge, local face)
+      std::vector<Inspect_index> vc;   // the corners at v that have edges
       Union_find<Inspect_index> fans;  // local faces of v joined through its edges
       for (std::size_t v = b; v < e; ++v) {
-        const std::size_t k = off[v + 1] - off[v];
+        vc.clear();
+        for (Inspect_index i = vertex_corner_first_[v]; i < vertex_corner_first_[v + 1]; ++i)
+          if (a_.corner_e[vertex_corners_[i]] != inspect_npos) vc.push_back(vertex_corners_[i]);
+        const std::size_t k = vc.size();
         if (k < 2) continue;
         link.clear();
         for (std::size_t i = 0; i < k; ++i) {
-          const Inspect_index c = vc[off[v] + i];
+          const Inspect_index c = vc[i];
           link.emplace_back(a_.corner_e[c], static_cast<Inspect_index>(i));
           link.emplace_back(a_.corner_e[a_.prev_corner(c)], static_cast<Inspect_index>(i));
         }
