@@ -380,13 +380,19 @@ Validity_result ensure_valid_mesh(PolygonMesh& pmesh,
       keys[i] = Key(key, fs[i]);
     });
     // the face breaks ties: the order, hence which duplicate goes, does not
-    // depend on the threads
+    // depend on the threads. Compared index by index: std::array's operators
+    // call memcmp, a tenth of ensure_valid_mesh on 1M faces.
+    auto same_vertices = [](const Key& x, const Key& y) {
+      return x.first[0] == y.first[0] && x.first[1] == y.first[1] && x.first[2] == y.first[2];
+    };
     internal::parallel_sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
-      return x.first != y.first ? x.first < y.first : x.second < y.second;
+      for (int j = 0; j < 3; ++j)
+        if (x.first[j] != y.first[j]) return x.first[j] < y.first[j];
+      return x.second < y.second;
     });
     std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
     for (std::size_t k = 1; k < keys.size(); ++k)
-      if (keys[k].first == keys[k - 1].first) pairs.emplace_back(keys[k - 1].second, keys[k].second);
+      if (same_vertices(keys[k], keys[k - 1])) pairs.emplace_back(keys[k - 1].second, keys[k].second);
     std::set<face_descriptor> gone;
     for (const auto& pr : pairs) {
       if (gone.count(pr.first) || gone.count(pr.second)) continue;

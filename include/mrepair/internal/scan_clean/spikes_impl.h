@@ -225,7 +225,7 @@ class Spike_relaxer
   bool cancelled_ = false;
   Spike_detector<Mesh, VPM> det_;
   Mark mark_;     // generation marks for set building
-  Mark in_w_;     // 1 in the working region
+  Mark in_w_;     // place in the working region plus 1 (0: outside)
   Mark moved_;    // 1 once moved
   std::uint32_t gen_ = 0;
 
@@ -254,29 +254,31 @@ public:
 
   void run(std::vector<vertex_descriptor> S)
   {
-    // working region W: n-ring of S
+    // working region W: n-ring of S; in_w_ holds a vertex's place in W plus 1
     std::vector<vertex_descriptor> W;
-    for (vertex_descriptor v : S)
-      if (get(in_w_, v) != 1) {
-        put(in_w_, v, 1);
-        W.push_back(v);
-      }
+    auto enter = [&](vertex_descriptor x) {
+      if (get(in_w_, x) != 0) return;
+      W.push_back(x);
+      put(in_w_, x, static_cast<std::uint32_t>(W.size()));
+    };
+    for (vertex_descriptor v : S) enter(v);
     std::size_t begin = 0;
     for (std::size_t ring = 0; ring < s_.rings; ++ring) {
       const std::size_t end = W.size();
       for (std::size_t i = begin; i < end; ++i)
-        for (halfedge_descriptor h : CGAL::halfedges_around_target(W[i], tm_)) {
-          vertex_descriptor x = source(h, tm_);
-          if (get(in_w_, x) != 1) {
-            put(in_w_, x, 1);
-            W.push_back(x);
-          }
-        }
+        for (halfedge_descriptor h : CGAL::halfedges_around_target(W[i], tm_)) enter(source(h, tm_));
       begin = end;
     }
     c_.region_vertices = W.size();
-    for (vertex_descriptor v : W)
-      if (det_.spiked(v)) ++spiked_in_region_before_;
+    // The spike status of W's vertices, tested once here and then only where
+    // a move can change it: a vertex's status reads its own and its 1-ring's
+    // positions and statistics, and the statistics change only around moved
+    // vertices (Geometric_statistics::recompute_around). Testing all of W
+    // after each round made the rounds grow faster than the mesh (10M faces:
+    // 0.26 s a round against 0.0095 s at 1M).
+    std::vector<unsigned char> spiked_in_w(W.size(), 0);
+    parallel_for_mesh_elements<Mesh>(W.size(), [&](std::size_t i) { spiked_in_w[i] = det_.spiked(W[i]); });
+    spiked_in_region_before_ = static_cast<std::size_t>(std::count(spiked_in_w.begin(), spiked_in_w.end(), 1));
     struct Item
     {
       double w, l; // weight, |L| (tie-break: the most displaced first)
@@ -284,6 +286,7 @@ public:
     };
     std::vector<Item> R;
     std::vector<vertex_descriptor> M;
+    std::vector<std::uint32_t> retest; // places in W
     while (!S.empty() && c_.iterations < s_.max_iterations) {
       if (vis_.stop_requested()) {
         cancelled_ = true;
@@ -321,14 +324,27 @@ public:
         return Vec{{p[0] + w * L[0], p[1] + w * L[1], p[2] + w * L[2]}};
       });
       ++c_.iterations;
+      // the moved vertices and their 1-rings, those in W
+      const std::uint32_t t = ++gen_;
+      retest.clear();
+      auto touch = [&](vertex_descriptor x) {
+        if (get(mark_, x) == t) return;
+        put(mark_, x, t);
+        if (const std::uint32_t place = get(in_w_, x)) retest.push_back(place - 1);
+      };
+      for (vertex_descriptor v : M) {
+        touch(v);
+        for (halfedge_descriptor h : CGAL::halfedges_around_target(v, tm_)) touch(source(h, tm_));
+      }
+      parallel_for_mesh_elements<Mesh>(retest.size(), [&](std::size_t i) {
+        spiked_in_w[retest[i]] = det_.spiked(W[retest[i]]);
+      });
       S.clear();
-      for (vertex_descriptor v : W)
-        if (det_.spiked(v)) S.push_back(v);
+      for (std::size_t i = 0; i < W.size(); ++i)
+        if (spiked_in_w[i]) S.push_back(W[i]);
       vis_.progress(static_cast<double>(c_.iterations) / static_cast<double>(s_.max_iterations));
     }
-    c_.spiked_in_region_after = 0;
-    for (vertex_descriptor v : W)
-      if (det_.spiked(v)) ++c_.spiked_in_region_after;
+    c_.spiked_in_region_after = static_cast<std::size_t>(std::count(spiked_in_w.begin(), spiked_in_w.end(), 1));
   }
 
   std::size_t spiked_in_region_before() const { return spiked_in_region_before_; }
