@@ -591,6 +591,34 @@ TYPED_TEST(Scan_clean, tall_narrow_spike_found_with_defaults)
   EXPECT_EQ(mrepair::relax_spikes(cu).spiked_vertices_before, 0u);
 }
 
+// Issue 17: after each round the relaxation retests only the vertices of the
+// working region next to a moved vertex; its counts must still be those of a
+// fresh detection over the whole mesh, also when spikes are left.
+TYPED_TEST(Scan_clean, relaxation_counts_match_a_fresh_detection)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh m = to_mesh<Mesh>(grid(60, 60));
+  auto vpm = get(CGAL::vertex_point, m);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> noise(-0.05, 0.05), tall(-4.0, 4.0);
+  for (auto v : vertices(m)) {
+    const Point p = get(vpm, v);
+    put(vpm, v, Point(p.x(), p.y(), rng() % 5 == 0 ? tall(rng) : noise(rng)));
+  }
+  Stats<Mesh> st(m);
+  st.compute_all();
+  // one round leaves spikes; after it only part of W was tested again
+  const auto r = mrepair::relax_spikes(m, st, MP::max_relax_iterations(1));
+  EXPECT_GT(r.spiked_vertices_before, 200u);
+  EXPECT_EQ(r.iterations, 1u);
+  EXPECT_GT(r.spiked_vertices_after, 0u);
+  Mesh copy = m;
+  EXPECT_EQ(mrepair::relax_spikes(copy).spiked_vertices_before, r.spiked_vertices_after);
+  EXPECT_EQ(r.spiked_in_region_after, r.spiked_vertices_after); // the region holds every spike
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(stats_equal_fresh(m, st));
+}
+
 TYPED_TEST(Scan_clean, foldover_is_unfolded)
 {
   using Mesh = typename TypeParam::Mesh;
