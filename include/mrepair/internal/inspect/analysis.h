@@ -103,6 +103,7 @@ public:
     MREPAIR_INSPECT_STEP(near_degenerate())
     MREPAIR_INSPECT_STEP(components())
     MREPAIR_INSPECT_STEP(non_manifold_vertices())
+    free_memory(vertex_corner_first_, vertex_corners_);  // built by vertex_accumulation, read up to here
     if (border_cycles) {
       MREPAIR_INSPECT_STEP(count_loops(*border_cycles))
     } else {
@@ -133,7 +134,7 @@ private:
   void release_per_element_arrays()
   {
     free_memory(skinny_corner_, edge_len_, vertex_mean_len_, valence_, not_interior_, boundary_vertex_,
-                spiked_, referenced_, non_manifold_vertex_, vertex_corner_first_, vertex_corners_);
+                spiked_, referenced_, non_manifold_vertex_);
   }
 
   // ---- vertices ---------------------------------------------------------------
@@ -211,17 +212,8 @@ private:
       k ^= k >> 32;
       h[v] = static_cast<Inspect_index>(k % nv);
     });
-    std::vector<Inspect_index> off(nv + 1, 0);
-    for (std::size_t v = 0; v < nv; ++v)
-      if (h[v] != inspect_npos) ++off[h[v]];
-    Inspect_index total = exclusive_scan_in_place(off);
-    off[nv] = total;
-    std::vector<Inspect_index> order(total);
-    {
-      std::vector<Inspect_index> pos(off.begin(), off.end() - 1);
-      for (std::size_t v = 0; v < nv; ++v)
-        if (h[v] != inspect_npos) order[pos[h[v]]++] = static_cast<Inspect_index>(v);
-    }
+    std::vector<Inspect_index> off, order;
+    bucket_items(nv, nv, inspect_npos, [&](std::size_t v) { return h[v]; }, off, order);
     auto less = [&](Inspect_index x, Inspect_index y) {
       const double *p = a_.point(x), *q = a_.point(y);
       if (p[0] != q[0]) return p[0] < q[0];
@@ -416,17 +408,9 @@ private:
     parallel_for_index(nf, 4096, [&](std::size_t f) {
       std::sort(sv.begin() + a_.face_off[f], sv.begin() + a_.face_off[f + 1]);
     });
-    std::vector<Inspect_index> off(nv + 1, 0);
-    for (std::size_t f = 0; f < nf; ++f)
-      if (!repeated_[f]) ++off[sv[a_.face_off[f]]];
-    Inspect_index total = exclusive_scan_in_place(off);
-    off[nv] = total;
-    std::vector<Inspect_index> order(total);
-    {
-      std::vector<Inspect_index> pos(off.begin(), off.end() - 1);
-      for (std::size_t f = 0; f < nf; ++f)
-        if (!repeated_[f]) order[pos[sv[a_.face_off[f]]]++] = static_cast<Inspect_index>(f);
-    }
+    std::vector<Inspect_index> off, order;
+    bucket_items(nf, nv, inspect_npos,
+                 [&](std::size_t f) { return repeated_[f] ? inspect_npos : sv[a_.face_off[f]]; }, off, order);
     auto cmp = [&](Inspect_index x, Inspect_index y) -> int {
       std::size_t kx = a_.degree(x), ky = a_.degree(y);
       if (kx != ky) return kx < ky ? -1 : 1;
@@ -599,13 +583,8 @@ private:
   // spike test and the fans of non_manifold_vertices.
   void vertex_corner_table()
   {
-    const std::size_t nv = a_.num_vertices, nc = a_.corner_v.size();
-    vertex_corner_first_.assign(nv + 1, 0);
-    for (std::size_t c = 0; c < nc; ++c) ++vertex_corner_first_[a_.corner_v[c]];
-    vertex_corner_first_[nv] = exclusive_scan_in_place(vertex_corner_first_);
-    vertex_corners_.resize(nc);
-    std::vector<Inspect_index> pos(vertex_corner_first_.begin(), vertex_corner_first_.end() - 1);
-    for (std::size_t c = 0; c < nc; ++c) vertex_corners_[pos[a_.corner_v[c]]++] = static_cast<Inspect_index>(c);
+    bucket_items(a_.corner_v.size(), a_.num_vertices, inspect_npos, [&](std::size_t c) { return a_.corner_v[c]; },
+                 vertex_corner_first_, vertex_corners_);
   }
   std::vector<Inspect_index> vertex_corner_first_, vertex_corners_;
 
