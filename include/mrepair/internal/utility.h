@@ -246,6 +246,22 @@ void free_memory(Containers&... c)
   (Containers().swap(c), ...);
 }
 
+// Hole filling adds elements once the cleaning's statistics and marks
+// exist; on Surface_mesh an addition beyond the capacity copies every
+// property array. The cleaning reserves this room (12.5% of the faces) before
+// any of them exists, and the soup builder reserves it from the start, so
+// that a soup repaired and then cleaned is never copied for it (unused
+// capacity is only address space).
+struct Element_counts
+{
+  std::size_t vertices, edges, faces;
+};
+inline Element_counts with_room_for_fills(std::size_t nv, std::size_t ne, std::size_t nf)
+{
+  const std::size_t room = nf / 8 + 4096;
+  return Element_counts{nv + room / 2, ne + 3 * room / 2, nf + room};
+}
+
 }  // namespace internal
 }  // namespace mrepair
 

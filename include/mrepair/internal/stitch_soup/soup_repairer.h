@@ -1086,9 +1086,10 @@ public:
     CGAL::clear(out);
     const std::size_t F = T.size(), S = 3 * F, V = P.size();
     std::size_t nb = count_boundary();
-    reserve(out, static_cast<typename GT::vertices_size_type>(V),
-            static_cast<typename GT::edges_size_type>((S + nb) / 2),
-            static_cast<typename GT::faces_size_type>(F));
+    const Element_counts room = with_room_for_fills(V, (S + nb) / 2, F);
+    reserve(out, static_cast<typename GT::vertices_size_type>(room.vertices),
+            static_cast<typename GT::edges_size_type>(room.edges),
+            static_cast<typename GT::faces_size_type>(room.faces));
     std::vector<vertex_descriptor> vd(V);
     for (std::size_t v = 0; v < V; ++v) {
       vd[v] = add_vertex(out);
