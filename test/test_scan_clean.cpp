@@ -770,6 +770,49 @@ TYPED_TEST(Scan_clean, bad_input)
   }
 }
 
+// Nothing flagged: the step skips its worker and second count, but reports
+// the same as a full run, and a stop request is still honoured.
+TYPED_TEST(Scan_clean, near_degenerate_with_nothing_to_do)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh m = to_mesh<Mesh>(grid(8, 8));
+  auto r = mrepair::repair_near_degenerate_faces(m);
+  EXPECT_EQ(r.status, mrepair::Status::ok) << r.message;
+  EXPECT_EQ(r.near_degenerate_faces_before, 0u);
+  EXPECT_EQ(r.near_degenerate_faces_after, 0u);
+  EXPECT_EQ(r.faces_before, 128u);
+  EXPECT_EQ(r.faces_after, 128u);
+  Stop_visitor sv;
+  r = mrepair::repair_near_degenerate_faces(m, CGAL::parameters::visitor(std::ref(sv)));
+  EXPECT_EQ(r.status, mrepair::Status::cancelled);
+  EXPECT_GT(sv.polls, 0);
+  EXPECT_EQ(face_count(m), 128u);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+}
+
+// Flagged but nothing editable (a lone needle: every collapse would delete
+// the model, every edge is a border): the count after is the count before,
+// and a fresh run finds the same.
+TYPED_TEST(Scan_clean, near_degenerate_without_an_edit_keeps_its_count)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  s.points.emplace_back(0, 0, 0);
+  s.points.emplace_back(1, 0, 0);
+  s.points.emplace_back(1, 0.01, 0);  // a zero edge: 0.01 < 0.1 * the mean length
+  s.polygons.push_back({0, 1, 2});
+  Mesh m = to_mesh<Mesh>(s);
+  auto r = mrepair::repair_near_degenerate_faces(m);
+  EXPECT_EQ(r.near_degenerate_faces_before, 1u);
+  EXPECT_EQ(r.edges_collapsed + r.edges_flipped, 0u);
+  EXPECT_EQ(r.near_degenerate_faces_after, 1u);
+  EXPECT_EQ(r.status, mrepair::Status::partial);
+  EXPECT_EQ(face_count(m), 1u);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  auto again = mrepair::repair_near_degenerate_faces(m);
+  EXPECT_EQ(again.near_degenerate_faces_before, r.near_degenerate_faces_after);
+}
+
 TYPED_TEST(Scan_clean, cancellation)
 {
   using Mesh = typename TypeParam::Mesh;
