@@ -16,6 +16,7 @@
 #include <mrepair/fill_small_holes.h>
 #include <mrepair/inspect.h>
 #include <mrepair/relax_spikes.h>
+#include <mrepair/repair.h>
 #include <mrepair/remove_small_components.h>
 #include <mrepair/repair_near_degenerate_faces.h>
 #include <mrepair/stitch_soup.h>
@@ -855,6 +856,51 @@ TYPED_TEST(Limits, TinyBudgetStopsMidway)
   check("clean_scan_mesh", [](Mesh& m, const auto& np) { return mrepair::clean_scan_mesh(m, np).status; });
   check("adaptive_remesh", [](Mesh& m, const auto& np) { return mrepair::adaptive_remesh(m, 0.02, np).status; });
   check("isotropic_remesh", [](Mesh& m, const auto& np) { return mrepair::isotropic_remesh(m, 0.3, np).status; });
+}
+
+// The whole job takes triangles as fixed arrays (what the command-line
+// program reads an all-triangle file into) and gives the same mesh, vertex
+// for vertex and face for face, as with polygon vectors.
+TEST(RepairJob, TriangleArraysGiveTheSameMeshAsPolygonVectors)
+{
+  using Mesh = CGAL::Surface_mesh<Point>;
+  Soup s = icosphere(3, 1.0);
+  const std::size_t nf = s.polygons.size();
+  s.polygons.push_back(s.polygons[5]);                                  // a duplicate
+  s.polygons.push_back({s.polygons[7][0], s.polygons[7][0], s.polygons[7][1]});  // repeated index
+  s.polygons.erase(s.polygons.begin() + 100, s.polygons.begin() + 103);  // a hole
+  s.points[s.polygons[200][0]] = Point(0, 0, 3);                         // a spike
+  const Soup piece = translated(icosphere(0, 0.05), 3, 0, 0);             // a small component
+  s = merged(s, piece);
+  ASSERT_GT(s.polygons.size(), nf);
+  std::vector<Point> p1 = s.points, p2 = s.points;
+  std::vector<Polygon> polygons = s.polygons;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  for (const Polygon& f : s.polygons) triangles.push_back({f[0], f[1], f[2]});
+  mrepair::Repair_options options;
+  Mesh m1, m2;
+  const mrepair::Repair_result a = mrepair::repair_polygon_soup(p1, polygons, m1, options);
+  const mrepair::Repair_result b = mrepair::repair_polygon_soup(p2, triangles, m2, options);
+  EXPECT_EQ(a.status, b.status) << a.message << " / " << b.message;
+  EXPECT_EQ(a.before.faces, b.before.faces);
+  EXPECT_EQ(a.before.duplicate_faces, b.before.duplicate_faces);
+  EXPECT_GE(a.before.duplicate_faces, 1u);
+  EXPECT_EQ(a.faces_in, b.faces_in);
+  EXPECT_EQ(a.faces_out, b.faces_out);
+  EXPECT_EQ(a.after.faces, b.after.faces);
+  EXPECT_TRUE(a.faces_reconcile());
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m1));
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m2));
+  ASSERT_EQ(num_vertices(m1), num_vertices(m2));
+  ASSERT_EQ(num_faces(m1), num_faces(m2));
+  EXPECT_EQ(a.after.boundary_loops, 0u);  // the hole is filled
+  for (auto v : vertices(m1)) EXPECT_EQ(m1.point(v), m2.point(v)) << v;
+  for (auto f : faces(m1)) {
+    std::vector<std::size_t> x, y;
+    for (auto v : CGAL::vertices_around_face(halfedge(f, m1), m1)) x.push_back(v);
+    for (auto v : CGAL::vertices_around_face(halfedge(f, m2), m2)) y.push_back(v);
+    EXPECT_EQ(x, y) << f;
+  }
 }
 
 TEST(TimeBudgetVisitor, ForwardsHooksAndHonoursTheInnerStop)

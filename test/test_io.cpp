@@ -515,6 +515,56 @@ TEST(Io_off, invalid_indices_are_kept_and_counted)
   EXPECT_EQ(polys[2][0], -1);
 }
 
+// All triangles: fixed arrays holding what read_polygon_soup reads, statuses
+// and counts included; one polygon of another size: the polygon vectors.
+TEST(Io_soup, triangles_read_into_arrays_else_polygons)
+{
+  using Triangle = std::array<std::size_t, 3>;
+  auto both = [](const std::string& path, bool expect_triangles) {
+    std::vector<Point> p1, p2;
+    std::vector<Polygon> polys, other;
+    std::vector<Triangle> tris;
+    bool all = !expect_triangles;
+    const Io_result a = mrepair::read_polygon_soup(path, p1, polys);
+    const Io_result b = mrepair::read_polygon_or_triangle_soup(path, p2, other, tris, all);
+    EXPECT_EQ(all, expect_triangles) << path;
+    EXPECT_EQ(a.status, b.status) << path;
+    EXPECT_EQ(a.points, b.points);
+    EXPECT_EQ(a.polygons, b.polygons);
+    EXPECT_EQ(a.non_finite_points, b.non_finite_points);
+    EXPECT_EQ(a.invalid_polygons, b.invalid_polygons);
+    EXPECT_EQ(a.message, b.message);
+    ASSERT_EQ(p1.size(), p2.size());
+    for (std::size_t i = 0; i < p1.size(); ++i)
+      EXPECT_TRUE(p1[i] == p2[i] || std::isnan(p1[i].x())) << i;
+    if (expect_triangles) {
+      EXPECT_TRUE(other.empty());
+      ASSERT_EQ(tris.size(), polys.size());
+      for (std::size_t f = 0; f < tris.size(); ++f)
+        EXPECT_EQ(Polygon(tris[f].begin(), tris[f].end()), polys[f]) << f;
+    } else {
+      EXPECT_TRUE(tris.empty());
+      EXPECT_EQ(other, polys);
+    }
+  };
+  both(write_file("tris.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 2 1 3\n"), true);
+  // an out-of-range and a negative index, and a NaN point, stay as read
+  both(write_file("tris_bad.off", "OFF\n3 3 0\nnan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 7\n3 -1 1 2\n"),
+       true);
+  both(write_file("quad.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n4 0 1 3 2\n"), false);
+  both(write_file("pair.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n2 0 1\n"), false);
+  // nothing read: both empty, the same error
+  both(write_file("empty.off", ""), false);
+  std::vector<Point> p;
+  std::vector<Polygon> polys;
+  std::vector<Triangle> tris;
+  bool all = true;
+  const Io_result r = mrepair::read_polygon_or_triangle_soup(temp_file("missing.off"), p, polys, tris, all);
+  EXPECT_EQ(r.status, Status::io_error);
+  EXPECT_FALSE(all);
+  EXPECT_TRUE(p.empty() && polys.empty() && tris.empty());
+}
+
 // ---- OBJ ----------------------------------------------------------------------
 
 TEST(Io_obj, corner_forms_and_relative_indices)

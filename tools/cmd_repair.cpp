@@ -13,6 +13,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -82,10 +83,16 @@ int run_repair(int argc, char** argv)
   cli::Progress_printer printer(!quiet);
   mrepair::Report report;
 
+  // an all-triangle file (scans, STL, most exports) is read into fixed arrays
   std::vector<K::Point_3> points;
   std::vector<std::vector<std::size_t>> polygons;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  bool all_triangles = false;
   mrepair::Io_result in;
-  double t = cli::timed([&] { in = mrepair::read_polygon_soup(a.positional[0], points, polygons); });
+  double t = cli::timed([&] {
+    in = mrepair::read_polygon_or_triangle_soup(a.positional[0], points, polygons, triangles,
+                                                all_triangles);
+  });
   if (!quiet) std::cerr << "  read: " << std::to_string(t).substr(0, 6) << " s\n";
   if (in.status != mrepair::Status::ok && in.status != mrepair::Status::non_finite_input &&
       in.status != mrepair::Status::invalid_index)
@@ -123,8 +130,11 @@ int run_repair(int argc, char** argv)
     if (s == "after") print_inspection("after", r.after, quiet);
   };
   Mesh mesh;
-  const mrepair::Repair_result r = mrepair::repair_polygon_soup(
-      points, polygons, mesh, options, CGAL::parameters::visitor(std::ref(printer)));
+  const mrepair::Repair_result r =
+      all_triangles ? mrepair::repair_polygon_soup(points, triangles, mesh, options,
+                                                   CGAL::parameters::visitor(std::ref(printer)))
+                    : mrepair::repair_polygon_soup(points, polygons, mesh, options,
+                                                   CGAL::parameters::visitor(std::ref(printer)));
   r.to_report(report);
   if (!r.failed_stage.empty()) {
     cli::emit_report(a, report);

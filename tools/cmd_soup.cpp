@@ -12,6 +12,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -56,9 +57,13 @@ int run(int argc, char** argv)
 
   cli::Progress_printer printer(!args.has("quiet") && !args.has("json"));
   std::vector<Point> points;
+  // an all-triangle file is read into fixed arrays (see read_polygon_or_triangle_soup)
   std::vector<std::vector<std::size_t>> polygons;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  bool all_triangles = false;
   printer.start_phase("read");
-  mrepair::Io_result io = mrepair::read_polygon_soup(input, points, polygons);
+  mrepair::Io_result io =
+      mrepair::read_polygon_or_triangle_soup(input, points, polygons, triangles, all_triangles);
   printer.end_phase("read");
   if (io.status != mrepair::Status::ok && io.status != mrepair::Status::non_finite_input &&
       io.status != mrepair::Status::invalid_index)
@@ -66,15 +71,18 @@ int run(int argc, char** argv)
 
   mrepair::Report report;
   io.to_report(report.section("file"));
-  mrepair::inspect_polygon_soup(points, polygons, MP::count_self_intersections(false))
-      .to_summary_report(report.section("before"));
-
   Mesh mesh;
-  mrepair::Soup_repair_result r = mrepair::polygon_soup_to_manifold_mesh(
-      points, polygons, mesh,
-      MP::snap_epsilon(eps, MP::merge_epsilon(merge, MP::keep_two_sided(args.has("keep-two-sided"),
-                                                                         MP::orient_outward(!args.has("no-orient-outward")))))
-          .visitor(std::ref(printer)));
+  auto inspect_and_repair = [&](auto& soup) {
+    mrepair::inspect_polygon_soup(points, soup, MP::count_self_intersections(false))
+        .to_summary_report(report.section("before"));
+    return mrepair::polygon_soup_to_manifold_mesh(
+        points, soup, mesh,
+        MP::snap_epsilon(eps, MP::merge_epsilon(merge, MP::keep_two_sided(args.has("keep-two-sided"),
+                                                                           MP::orient_outward(!args.has("no-orient-outward")))))
+            .visitor(std::ref(printer)));
+  };
+  mrepair::Soup_repair_result r =
+      all_triangles ? inspect_and_repair(triangles) : inspect_and_repair(polygons);
   r.to_report(report.section("soup"));
   if (!mrepair::succeeded(r.status)) {
     cli::emit_report(args, report);

@@ -84,6 +84,35 @@ Io_result read_polygon_soup(const std::string& path, std::vector<Point>& points,
 }
 
 /// \ingroup mrepair_io
+/// reads a file as `read_polygon_soup` does, into `triangles` when every
+/// polygon of the file is a triangle (`polygons` left empty), else into
+/// `polygons` (`triangles` left empty). A triangle as a fixed array is no heap
+/// block of its own: on a 10M-face scan, 10 million allocations and 320 MB
+/// less than `std::vector` polygons, for the reader and for every pass over the soup.
+/// \tparam Triangle e.g. `std::array<std::size_t, 3>`
+/// \param all_triangles set to which of the two was filled
+template <class Point, class Polygon, class Triangle>
+Io_result read_polygon_or_triangle_soup(const std::string& path, std::vector<Point>& points,
+                                        std::vector<Polygon>& polygons,
+                                        std::vector<Triangle>& triangles, bool& all_triangles)
+{
+  points.clear();
+  polygons.clear();
+  triangles.clear();
+  all_triangles = false;
+  Io_result r;
+  internal::io::Raw_soup raw;
+  internal::io::read_raw(path, raw, r);
+  if (r.points == 0) return r;
+  all_triangles = internal::io::all_polygons_have(raw, 3);
+  if (all_triangles)
+    internal::io::raw_to_soup(path, raw, points, triangles, r);
+  else
+    internal::io::raw_to_soup(path, raw, points, polygons, r);
+  return r;
+}
+
+/// \ingroup mrepair_io
 /// writes a polygon soup to an OFF, OBJ, PLY or STL file (by extension).
 /// \param binary binary PLY (little endian, double coordinates) or binary STL
 ///   (float32); ignored for OFF and OBJ, which are written as ASCII (the

@@ -19,6 +19,7 @@
 #include <CGAL/number_utils.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <limits>
@@ -52,13 +53,35 @@ bool fill_or_report_oom(const std::string& path, Io_result& r, const Fill& fill)
   return true;
 }
 
+/// one polygon from `n` raw indices: a resizable container takes them all, a
+/// fixed array (std::array<I, N>) its N (the caller checked every polygon has N)
+template <class Polygon>
+void assign_polygon(Polygon& poly, const std::int64_t* first, std::size_t n)
+{
+  using Index = typename Polygon::value_type;
+  poly.resize(n);
+  for (std::size_t k = 0; k < n; ++k) poly[k] = static_cast<Index>(first[k]);
+}
+template <class I, std::size_t N>
+void assign_polygon(std::array<I, N>& poly, const std::int64_t* first, std::size_t)
+{
+  for (std::size_t k = 0; k < N; ++k) poly[k] = static_cast<I>(first[k]);
+}
+
+/// true when every polygon of `raw` has `n` corners
+inline bool all_polygons_have(const Raw_soup& raw, std::size_t n)
+{
+  for (std::size_t f = 0; f < raw.num_polygons(); ++f)
+    if (raw.starts[f + 1] - raw.starts[f] != n) return false;
+  return true;
+}
+
 /// moves what `raw` holds into `points` and `polygons` (empty on entry).
 template <class Point, class Polygon>
 void raw_to_soup(const std::string& path, Raw_soup& raw, std::vector<Point>& points,
                  std::vector<Polygon>& polygons, Io_result& r)
 {
   try {
-    using Index = typename Polygon::value_type;
     points.reserve(raw.num_points());
     advise_huge_pages(points.data(), raw.num_points() * sizeof(Point));
     for (std::size_t i = 0; i < raw.num_points(); ++i)
@@ -74,10 +97,8 @@ void raw_to_soup(const std::string& path, Raw_soup& raw, std::vector<Point>& poi
     parallel_for_index((raw.num_polygons() + block - 1) / block, 1, [&](std::size_t j) {
       try {
         for (std::size_t f = j * block; f < std::min(raw.num_polygons(), (j + 1) * block); ++f) {
-          Polygon& poly = polygons[f];
-          const std::size_t b = raw.starts[f], n = raw.starts[f + 1] - b;
-          poly.resize(n);
-          for (std::size_t k = 0; k < n; ++k) poly[k] = static_cast<Index>(raw.indices[b + k]);
+          const std::size_t b = raw.starts[f];
+          assign_polygon(polygons[f], &raw.indices[b], raw.starts[f + 1] - b);
         }
       } catch (const std::bad_alloc&) {
         out_of_memory = true;
