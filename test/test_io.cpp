@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -272,7 +273,63 @@ TYPED_TEST(Io_mesh, writes_surface_mesh_with_removed_elements)
   EXPECT_TRUE(CGAL::is_valid_polygon_mesh(back));
 }
 
+// A Surface_mesh without removed elements is written in place, a Polyhedron
+// or a mesh with removed elements through a copy: the bytes are those of its
+// soup written in face order, in every format, and so are the counts.
+TYPED_TEST(Io_mesh, mesh_writes_the_bytes_of_its_soup)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = icosphere(2, 1.0);
+  s.points[7] = Point(std::numeric_limits<double>::quiet_NaN(), 0, 0);  // counted, written as nan
+  const Mesh m = to_mesh<Mesh>(s);
+  // the mesh's own soup: its points in vertex order, its faces' vertices as
+  // vertices_around_face lists them
+  Soup own;
+  std::map<typename boost::graph_traits<Mesh>::vertex_descriptor, std::size_t> id;
+  for (auto v : vertices(m)) {
+    id[v] = own.points.size();
+    own.points.push_back(get(CGAL::vertex_point, m, v));
+  }
+  for (auto f : faces(m)) {
+    Polygon p;
+    for (auto v : CGAL::vertices_around_face(halfedge(f, m), m)) p.push_back(id[v]);
+    own.polygons.push_back(p);
+  }
+  for (const Format& f : all_formats) {
+    SCOPED_TRACE(std::string(f.ext) + (f.binary ? " binary" : " ascii"));
+    const std::string a = temp_file(std::string("mesh_view.") + f.ext),
+                      b = temp_file(std::string("mesh_soup.") + f.ext);
+    const Io_result wa = mrepair::write_polygon_mesh(a, m, f.binary);
+    const Io_result wb = mrepair::write_polygon_soup(b, own.points, own.polygons, f.binary);
+    ASSERT_EQ(wa.status, Status::ok) << wa.message;
+    ASSERT_EQ(wb.status, Status::ok) << wb.message;
+    EXPECT_EQ(wa.points, wb.points);
+    EXPECT_EQ(wa.polygons, wb.polygons);
+    EXPECT_EQ(wa.non_finite_points, 1u);
+    EXPECT_EQ(wa.non_finite_points, wb.non_finite_points);
+    EXPECT_EQ(read_bytes(a), read_bytes(b));
+  }
+}
+
 // ---- soups ---------------------------------------------------------------------
+
+// The writers' validating pass runs in chunks: the counts are those of the
+// whole soup and the message names the first bad polygon, whatever chunk
+// holds it.
+TEST(Io_soup, write_names_the_first_of_many_invalid_polygons)
+{
+  const Soup g = grid(150, 150);  // 45,000 triangles: several chunks
+  ASSERT_GT(g.polygons.size(), 40000u);
+  Soup s = g;
+  for (std::size_t f : {std::size_t(20000), std::size_t(33333), std::size_t(44999)})
+    s.polygons[f][2] = s.points.size() + f;
+  const std::string path = temp_file("many_bad.off");
+  const Io_result w = mrepair::write_polygon_soup(path, s.points, s.polygons);
+  EXPECT_EQ(w.status, Status::invalid_index);
+  EXPECT_EQ(w.invalid_polygons, 3u);
+  EXPECT_NE(w.message.find("first is polygon 20000"), std::string::npos) << w.message;
+  EXPECT_FALSE(fs::exists(path));
+}
 
 TEST(Io_soup, round_trip_soup_every_format)
 {

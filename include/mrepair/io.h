@@ -201,6 +201,16 @@ Io_result write_polygon_mesh(const std::string& path, const PolygonMesh& pmesh, 
   VPM vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                              get_const_property_map(CGAL::vertex_point, pmesh));
   Io_result r;
+  if constexpr (internal::Is_surface_mesh<PolygonMesh>::value) {
+    // written in place unless removed elements leave gaps in the indices
+    // (a user-given vertex index map is read through the copy alone)
+    if (!pmesh.has_garbage() &&
+        CGAL::parameters::is_default_parameter<NamedParameters, CGAL::internal_np::vertex_index_t>::value) {
+      internal::io::write_view(path, internal::io::Surface_mesh_view<typename PolygonMesh::Point, VPM>{pmesh, vpm},
+                               binary, r);
+      return r;
+    }
+  }
   internal::io::Raw_soup raw;
   if (internal::io::mesh_to_raw(path, pmesh, vpm, np, raw, r))
     internal::io::write_raw(path, raw, binary, r);

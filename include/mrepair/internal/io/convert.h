@@ -144,6 +144,40 @@ struct Vectors_view
       std::is_floating_point<std::decay_t<decltype(std::declval<const Point&>().x())>>::value;
 };
 
+/// a `Surface_mesh` without removed elements as the writers read it, with no
+/// intermediate copy (a 10M-face mesh's copy is 440 MB and a sequential pass):
+/// point i is vertex i, polygon f is face f with its vertices in the order of
+/// `vertices_around_face(halfedge(f))`, as `mesh_to_raw` numbers them.
+template <class P, class VertexPointMap>
+struct Surface_mesh_view
+{
+  using Mesh = CGAL::Surface_mesh<P>;
+  const Mesh& m;
+  VertexPointMap vpm;
+  std::size_t num_points() const { return m.number_of_vertices(); }
+  std::size_t num_polygons() const { return m.number_of_faces(); }
+  void point(std::size_t i, double* c) const
+  {
+    const auto& p = get(vpm, typename Mesh::Vertex_index(static_cast<typename Mesh::size_type>(i)));
+    for (int d = 0; d < 3; ++d) c[d] = coordinate(p, d);
+  }
+  std::size_t degree(std::size_t f) const
+  {
+    return static_cast<std::size_t>(m.degree(typename Mesh::Face_index(static_cast<typename Mesh::size_type>(f))));
+  }
+  std::int64_t index(std::size_t f, std::size_t k) const
+  {
+    auto h = m.halfedge(typename Mesh::Face_index(static_cast<typename Mesh::size_type>(f)));
+    for (; k > 0; --k) h = m.next(h);
+    return static_cast<std::int64_t>(static_cast<typename Mesh::size_type>(m.target(h)));
+  }
+  const double* xyz() const { return nullptr; }
+  /// the mesh's own point map (an array) and plain floating-point coordinates
+  static constexpr bool parallel =
+      std::is_same<VertexPointMap, typename Mesh::template Property_map<typename Mesh::Vertex_index, P>>::value &&
+      std::is_floating_point<std::decay_t<decltype(std::declval<const P&>().x())>>::value;
+};
+
 /// copies `pmesh` into `raw`, vertices numbered consecutively in the order of
 /// `vertices(pmesh)`; false (and `r` says why) when memory ran out.
 template <class PolygonMesh, class VertexPointMap, class NamedParameters>

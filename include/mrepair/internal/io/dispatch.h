@@ -7,6 +7,7 @@
 // and the checks of what was read or is to be written, summed up in an
 // `Io_result`.
 
+#include <mrepair/internal/inspect/parallel.h>
 #include <mrepair/internal/io/common.h>
 #include <mrepair/internal/io/read_obj.h>
 #include <mrepair/internal/io/read_off.h>
@@ -23,6 +24,7 @@
 #include <limits>
 #include <new>
 #include <string>
+#include <vector>
 
 namespace mrepair {
 namespace internal {
@@ -195,24 +197,50 @@ void write_view(const std::string& path, const View& raw, bool binary, Io_result
   const bool stl = format == File_format::stl;
   // refuse what the file could not represent faithfully
   const std::int64_t np = static_cast<std::int64_t>(raw.num_points());
-  std::size_t first_bad = 0;
-  Soup_stats stats;
-  for (std::size_t f = raw.num_polygons(); f-- > 0;) {
-    const std::size_t n = raw.degree(f);
-    stats.max_degree = std::max(stats.max_degree, n);
-    if (n >= 3) stats.triangles += n - 2;
-    bool bad = stl && n < 3;
-    for (std::size_t k = 0; k < n && !bad; ++k) bad = !index_in_range(raw.index(f, k), np);
-    if (bad) {
-      ++r.invalid_polygons;
-      first_bad = f;
+  // one validating pass, in chunks (in parallel when the view may be read
+  // from several threads): the same counts and the same first bad polygon
+  struct Check
+  {
+    Soup_stats stats;
+    std::size_t invalid = 0, first_bad = 0, non_finite = 0;
+  };
+  auto check_polygons = [&](std::size_t b, std::size_t e, Check& c) {
+    for (std::size_t f = b; f < e; ++f) {
+      const std::size_t n = raw.degree(f);
+      c.stats.max_degree = std::max(c.stats.max_degree, n);
+      if (n >= 3) c.stats.triangles += n - 2;
+      bool bad = stl && n < 3;
+      for (std::size_t k = 0; k < n && !bad; ++k) bad = !index_in_range(raw.index(f, k), np);
+      if (bad && c.invalid++ == 0) c.first_bad = f;
     }
+  };
+  auto check_points = [&](std::size_t b, std::size_t e, Check& c) {
+    for (std::size_t i = b; i < e; ++i) {
+      double x[3];
+      raw.point(i, x);
+      if (!(std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]))) ++c.non_finite;
+    }
+  };
+  std::vector<Check> checks(1);
+  if (View::parallel) {
+    checks = chunked<Check>(raw.num_polygons(), check_polygons);
+  } else {
+    check_polygons(0, raw.num_polygons(), checks[0]);
   }
-  for (std::size_t i = 0; i < raw.num_points(); ++i) {
-    double c[3];
-    raw.point(i, c);
-    if (!(std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]))) ++r.non_finite_points;
+  Soup_stats stats;
+  std::size_t first_bad = 0;
+  for (const Check& c : checks) {
+    stats.max_degree = std::max(stats.max_degree, c.stats.max_degree);
+    stats.triangles += c.stats.triangles;
+    if (c.invalid && r.invalid_polygons == 0) first_bad = c.first_bad;
+    r.invalid_polygons += c.invalid;
   }
+  checks.assign(1, Check());
+  if (View::parallel)
+    checks = chunked<Check>(raw.num_points(), check_points);
+  else
+    check_points(0, raw.num_points(), checks[0]);
+  for (const Check& c : checks) r.non_finite_points += c.non_finite;
   if (r.invalid_polygons) {
     r.status = Status::invalid_index;
     r.message = path + ": not written: " + std::to_string(r.invalid_polygons) +
