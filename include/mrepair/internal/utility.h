@@ -163,6 +163,46 @@ void parallel_for_index(std::size_t n, std::size_t grain, const F& f)
   for (std::size_t i = 0; i < n; ++i) f(i);
 }
 
+// Splits [0,n) into a fixed number of chunks (independent of the thread count,
+// so that floating-point sums are reproducible), runs f(begin, end, acc) on
+// each, possibly in parallel, and returns the per-chunk accumulators in order.
+template <typename Acc, typename F>
+std::vector<Acc> chunked(std::size_t n, const F& f)
+{
+  std::size_t chunks = std::min<std::size_t>(64, (n + 8191) / 8192);
+  if (chunks == 0) chunks = 1;
+  std::vector<Acc> acc(chunks);
+  parallel_for_index(chunks, 1, [&](std::size_t c) {
+    f(n * c / chunks, n * (c + 1) / chunks, acc[c]);
+  });
+  return acc;
+}
+
+// The border halfedges of `pm` in the order of `halfedges(pm)`. Steps look
+// for them on every run, also when there are none (the cleaning's last
+// iterations): on Surface_mesh the index range is scanned in chunks, in
+// parallel (30M halfedges on a 10M-face scan), the same list in the same order.
+template <typename PM>
+void border_halfedges(const PM& pm, std::vector<typename boost::graph_traits<PM>::halfedge_descriptor>& out)
+{
+  out.clear();
+  if constexpr (Is_surface_mesh<PM>::value) {
+    using H = typename PM::Halfedge_index;
+    using S = typename PM::size_type;
+    const std::size_t slots = pm.number_of_halfedges() + pm.number_of_removed_halfedges();
+    auto parts = chunked<std::vector<H>>(slots, [&](std::size_t b, std::size_t e, std::vector<H>& part) {
+      for (std::size_t i = b; i < e; ++i) {
+        const H h(static_cast<S>(i));
+        if (!pm.is_removed(h) && pm.is_border(h)) part.push_back(h);
+      }
+    });
+    for (const std::vector<H>& part : parts) out.insert(out.end(), part.begin(), part.end());
+  } else {
+    for (auto h : halfedges(pm))
+      if (is_border(h, pm)) out.push_back(h);
+  }
+}
+
 /// sorts [first, last) with TBB when there is one. `less` must be a strict
 /// total order on the values that can occur (ties would go either way,
 /// depending on the threads).

@@ -51,20 +51,21 @@ Bad_boundary bad_boundary_vertex(typename boost::graph_traits<PM>::vertex_descri
   return valence == 2 ? Bad_boundary::valence_two : Bad_boundary::no;
 }
 
-// Collects each boundary vertex once (order of the halfedge scan).
+// Collects each boundary vertex once (order of the halfedge scan), from the
+// border halfedges `border` (border_halfedges()).
 template <typename PM, typename VMark>
-void collect_boundary_vertices(const PM& pm, VMark& seen,
-                               std::vector<typename boost::graph_traits<PM>::vertex_descriptor>& out)
+void collect_boundary_vertices(const PM& pm,
+                               const std::vector<typename boost::graph_traits<PM>::halfedge_descriptor>& border,
+                               VMark& seen, std::vector<typename boost::graph_traits<PM>::vertex_descriptor>& out)
 {
   out.clear();
-  for (auto h : halfedges(pm))
-    if (is_border(h, pm)) {
-      auto v = target(h, pm);
-      if (!get(seen, v)) {
-        put(seen, v, true);
-        out.push_back(v);
-      }
+  for (auto h : border) {
+    auto v = target(h, pm);
+    if (!get(seen, v)) {
+      put(seen, v, true);
+      out.push_back(v);
     }
+  }
   for (auto v : out) put(seen, v, false);
 }
 
@@ -82,13 +83,15 @@ std::size_t smooth_boundary_ring(Local_operations<PM, VPM>& ops, std::size_t ite
   const VPM& vpm = ops.vertex_point_map();
   if (iterations == 0 || step == 0.) return 0;
   auto idx = get(CGAL::dynamic_vertex_property_t<int>(), pm);
+  // new dynamic maps hold value-initialised entries (false) on every mesh type
   auto seen = get(CGAL::dynamic_vertex_property_t<bool>(), pm);
-  for (vertex_descriptor v : vertices(pm)) {
-    put(idx, v, -1);
-    put(seen, v, false);
-  }
+  for (vertex_descriptor v : vertices(pm)) put(idx, v, -1);
   std::vector<vertex_descriptor> set;
-  collect_boundary_vertices(pm, seen, set);
+  {
+    std::vector<typename boost::graph_traits<PM>::halfedge_descriptor> border;
+    border_halfedges(pm, border);
+    collect_boundary_vertices(pm, border, seen, set);
+  }
   set.erase(std::remove_if(set.begin(), set.end(),
                            [&](vertex_descriptor v) { return !smoothable(v); }),
             set.end());
@@ -174,16 +177,16 @@ Boundary_cleaning_result clean_boundaries_with(Local_operations<PM, VPM>& ops,
   // of local teeth (an ear, a folded border face, on a loop straight
   // elsewhere) may be eroded; a vertex the erosion uncovers inherits that
   // right from the vertex whose faces went.
+  // new dynamic maps hold value-initialised entries (false) on every mesh type
   auto seen = get(CGAL::dynamic_vertex_property_t<bool>(), pm);
   auto loop_of = get(CGAL::dynamic_vertex_property_t<int>(), pm);
   auto erodible = get(CGAL::dynamic_vertex_property_t<bool>(), pm);
-  for (vertex_descriptor v : vertices(pm)) {
-    put(seen, v, false);
-    put(loop_of, v, -1);
-    put(erodible, v, false);
-  }
+  for (vertex_descriptor v : vertices(pm)) put(loop_of, v, -1);
+  // the border halfedges, read by three passes below before the first edit
+  std::vector<typename GT::halfedge_descriptor> border;
+  border_halfedges(pm, border);
   std::vector<vertex_descriptor> boundary;
-  collect_boundary_vertices(pm, seen, boundary);
+  collect_boundary_vertices(pm, border, seen, boundary);
   r.boundary_vertices = boundary.size();
   if (boundary.empty()) return r;
   for (vertex_descriptor v : boundary)
@@ -194,8 +197,8 @@ Boundary_cleaning_result clean_boundaries_with(Local_operations<PM, VPM>& ops,
   std::vector<char> jagged;
   {
     std::vector<std::pair<vertex_descriptor, double>> turns;
-    for (auto h : halfedges(pm)) {
-      if (!is_border(h, pm) || get(loop_of, target(h, pm)) >= 0) continue;
+    for (auto h : border) {
+      if (get(loop_of, target(h, pm)) >= 0) continue;
       const int l = int(jagged.size());
       loop_turns(h, pm, vpm, turns);
       for (const auto& t : turns) put(loop_of, t.first, l);
@@ -243,8 +246,7 @@ Boundary_cleaning_result clean_boundaries_with(Local_operations<PM, VPM>& ops,
       r.status = Status::non_finite_input;
       return r;
     }
-  auto fmark = get(CGAL::dynamic_face_property_t<char>(), pm);
-  for (face_descriptor f : faces(pm)) put(fmark, f, char(0));
+  auto fmark = get(CGAL::dynamic_face_property_t<char>(), pm);  // all 0
   std::vector<std::size_t> budget(jagged.size(), 0), spent(jagged.size(), 0);
   {
     std::vector<face_descriptor> counted;
@@ -261,13 +263,11 @@ Boundary_cleaning_result clean_boundaries_with(Local_operations<PM, VPM>& ops,
   // Components too small to survive an erosion whole are never touched by
   // the removal of small components below: it only removes pieces the
   // erosion split off larger components.
-  auto protect = get(CGAL::dynamic_face_property_t<bool>(), pm);
-  for (face_descriptor f : faces(pm)) put(protect, f, false);
+  auto protect = get(CGAL::dynamic_face_property_t<bool>(), pm);  // all false
   if (s.component_faces > 1) {
     std::vector<face_descriptor> seeds, small;
     std::vector<std::size_t> offsets;
-    for (auto h : halfedges(pm))
-      if (is_border(h, pm)) seeds.push_back(face(opposite(h, pm), pm));
+    for (auto h : border) seeds.push_back(face(opposite(h, pm), pm));
     find_small_components(pm, seeds, 4 * s.component_faces, small, offsets);
     for (face_descriptor f : small) put(protect, f, true);
   }
@@ -345,9 +345,9 @@ Boundary_cleaning_result clean_boundaries_with(Local_operations<PM, VPM>& ops,
   // finds them all); protected components and the largest one stay.
   if (s.component_faces > 1 && r.faces_removed > 0) {
     std::vector<face_descriptor> seeds;
-    for (auto h : halfedges(pm))
-      if (is_border(h, pm) && !get(protect, face(opposite(h, pm), pm)))
-        seeds.push_back(face(opposite(h, pm), pm));
+    border_halfedges(pm, border);  // after the erosion
+    for (auto h : border)
+      if (!get(protect, face(opposite(h, pm), pm))) seeds.push_back(face(opposite(h, pm), pm));
     Small_components_result c =
         remove_small_components_seeded(ops, seeds, s.component_faces, 1., &protect);
     r.components_removed = c.components_removed;

@@ -404,8 +404,7 @@ public:
   Status run(std::size_t max_enlargements, Visitor& visitor)
   {
     std::vector<halfedge_descriptor> all, loops;
-    for (halfedge_descriptor h : halfedges(pm_))
-      if (is_border(h, pm_)) all.push_back(h);
+    border_halfedges(pm_, all);
     loops_of(all, loops);
     prepare_guard(loops);
     std::vector<halfedge_descriptor> failed, next;

@@ -41,8 +41,7 @@ void find_small_components(const PM& pm, const FaceRange& seeds, std::size_t thr
   offsets.assign(1, 0);
   if (threshold <= 1) return;  // no component has fewer than 1 face
   // 0 unvisited, 1 growing, 2 in a large component, 3 in a small one
-  auto label = get(CGAL::dynamic_face_property_t<char>(), pm);
-  for (face_descriptor f : faces(pm)) put(label, f, char(0));
+  auto label = get(CGAL::dynamic_face_property_t<char>(), pm);  // value-initialised: all 0
   std::vector<face_descriptor> comp;
   for (face_descriptor seed : seeds) {
     if (get(label, seed) != 0) continue;

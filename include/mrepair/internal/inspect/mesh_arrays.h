@@ -35,18 +35,40 @@ bool build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arrays
 
   auto vim = CGAL::get_initialized_vertex_index_map(pm);
   auto him = CGAL::get_initialized_halfedge_index_map(pm);
+  // A Surface_mesh without removed elements numbers its elements 0..n-1 in
+  // iteration order: its element lists are then filled in parallel instead
+  // of by sequential walks (30M halfedges on a 10M-face mesh).
+  bool compact = false;
+  std::vector<vertex_descriptor> V;
+  std::vector<halfedge_descriptor> E;
+  std::vector<face_descriptor> F;
+  if constexpr (Is_surface_mesh<PolygonMesh>::value) {
+    compact = !pm.has_garbage();
+    if (compact) {
+      using S = typename PolygonMesh::size_type;
+      V.resize(pm.number_of_vertices());
+      E.resize(pm.number_of_edges());
+      F.resize(pm.number_of_faces());
+      parallel_for_index(V.size(), 16384, [&](std::size_t i) { V[i] = vertex_descriptor(static_cast<S>(i)); });
+      parallel_for_index(E.size(), 16384, [&](std::size_t i) {
+        E[i] = halfedge(typename PolygonMesh::Edge_index(static_cast<S>(i)), pm);
+      });
+      parallel_for_index(F.size(), 16384, [&](std::size_t i) { F[i] = face_descriptor(static_cast<S>(i)); });
+    }
+  }
 
   // vertices: compact ids in iteration order
-  std::vector<vertex_descriptor> V;
-  V.reserve(internal::vertex_count(pm));
-  std::size_t vslots = 0;
-  for (vertex_descriptor v : vertices(pm)) {
-    V.push_back(v);
-    vslots = (std::max)(vslots, static_cast<std::size_t>(get(vim, v)) + 1);
+  std::size_t vslots = V.size();
+  if (!compact) {
+    V.reserve(internal::vertex_count(pm));
+    for (vertex_descriptor v : vertices(pm)) {
+      V.push_back(v);
+      vslots = (std::max)(vslots, static_cast<std::size_t>(get(vim, v)) + 1);
+    }
   }
   if (V.size() >= inspect_npos || vslots >= inspect_npos) return false;
   std::vector<Inspect_index> vid(vslots, inspect_npos);
-  for (std::size_t i = 0; i < V.size(); ++i) vid[get(vim, V[i])] = static_cast<Inspect_index>(i);
+  parallel_for_index(V.size(), 16384, [&](std::size_t i) { vid[get(vim, V[i])] = static_cast<Inspect_index>(i); });
   a.num_vertices = V.size();
   a.xyz.resize(3 * V.size());
   a.finite.resize(V.size());
@@ -60,19 +82,19 @@ bool build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arrays
   });
 
   // edges: one id for both halfedges
-  std::size_t hslots = 0;
-  for (halfedge_descriptor h : halfedges(pm))
-    hslots = (std::max)(hslots, static_cast<std::size_t>(get(him, h)) + 1);
+  std::size_t hslots = 2 * E.size();
+  if (!compact) {
+    for (halfedge_descriptor h : halfedges(pm))
+      hslots = (std::max)(hslots, static_cast<std::size_t>(get(him, h)) + 1);
+    E.reserve(edges(pm).size());
+    for (auto e : edges(pm)) E.push_back(halfedge(e, pm));
+  }
   if (hslots >= inspect_npos) return false;
   std::vector<Inspect_index> eid(hslots, inspect_npos);
-  std::vector<halfedge_descriptor> E;
-  E.reserve(edges(pm).size());
-  for (auto e : edges(pm)) {
-    halfedge_descriptor h = halfedge(e, pm);
-    eid[get(him, h)] = eid[get(him, opposite(h, pm))] = static_cast<Inspect_index>(E.size());
-    E.push_back(h);
-  }
   const std::size_t ne = E.size();
+  parallel_for_index(ne, 16384, [&](std::size_t e) {
+    eid[get(him, E[e])] = eid[get(him, opposite(E[e], pm))] = static_cast<Inspect_index>(e);
+  });
   a.edge_v.resize(2 * ne);
   parallel_for_index(ne, 8192, [&](std::size_t e) {
     a.edge_v[2 * e] = vid[get(vim, source(E[e], pm))];
@@ -80,9 +102,10 @@ bool build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arrays
   });
 
   // faces and corners: corner of halfedge h is source(h), its edge is edge(h)
-  std::vector<face_descriptor> F;
-  F.reserve(internal::face_count(pm));
-  for (face_descriptor f : faces(pm)) F.push_back(f);
+  if (!compact) {
+    F.reserve(internal::face_count(pm));
+    for (face_descriptor f : faces(pm)) F.push_back(f);
+  }
   const std::size_t nf = F.size();
   a.face_off.assign(nf + 1, 0);
   parallel_for_index(nf, 4096, [&](std::size_t f) {
@@ -135,8 +158,10 @@ bool build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arrays
   // border cycles, walked with next() as CGAL defines them
   border_cycles.clear();
   std::vector<unsigned char> seen(hslots, 0);
-  for (halfedge_descriptor h : halfedges(pm)) {
-    if (!is_border(h, pm) || seen[get(him, h)]) continue;
+  std::vector<halfedge_descriptor> border;
+  border_halfedges(pm, border);
+  for (halfedge_descriptor h : border) {
+    if (seen[get(him, h)]) continue;
     std::size_t len = 0;
     halfedge_descriptor g = h;
     do {
