@@ -7,13 +7,13 @@
 // and the checks of what was read or is to be written, summed up in an
 // `Io_result`.
 
-#include <mrepair/internal/inspect/parallel.h>
 #include <mrepair/internal/io/common.h>
 #include <mrepair/internal/io/read_obj.h>
 #include <mrepair/internal/io/read_off.h>
 #include <mrepair/internal/io/read_ply.h>
 #include <mrepair/internal/io/read_stl.h>
 #include <mrepair/internal/io/write.h>
+#include <mrepair/internal/utility.h>
 #include <mrepair/io_result.h>
 #include <mrepair/status.h>
 
@@ -221,26 +221,21 @@ void write_view(const std::string& path, const View& raw, bool binary, Io_result
       if (!(std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]))) ++c.non_finite;
     }
   };
-  std::vector<Check> checks(1);
-  if (View::parallel) {
-    checks = chunked<Check>(raw.num_polygons(), check_polygons);
-  } else {
-    check_polygons(0, raw.num_polygons(), checks[0]);
-  }
+  auto in_chunks = [&](std::size_t n, const auto& check) {
+    if (View::parallel) return chunked<Check>(n, check);
+    std::vector<Check> whole(1);
+    check(0, n, whole[0]);
+    return whole;
+  };
   Soup_stats stats;
   std::size_t first_bad = 0;
-  for (const Check& c : checks) {
+  for (const Check& c : in_chunks(raw.num_polygons(), check_polygons)) {
     stats.max_degree = std::max(stats.max_degree, c.stats.max_degree);
     stats.triangles += c.stats.triangles;
     if (c.invalid && r.invalid_polygons == 0) first_bad = c.first_bad;
     r.invalid_polygons += c.invalid;
   }
-  checks.assign(1, Check());
-  if (View::parallel)
-    checks = chunked<Check>(raw.num_points(), check_points);
-  else
-    check_points(0, raw.num_points(), checks[0]);
-  for (const Check& c : checks) r.non_finite_points += c.non_finite;
+  for (const Check& c : in_chunks(raw.num_points(), check_points)) r.non_finite_points += c.non_finite;
   if (r.invalid_polygons) {
     r.status = Status::invalid_index;
     r.message = path + ": not written: " + std::to_string(r.invalid_polygons) +
