@@ -13,9 +13,11 @@
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -828,4 +830,86 @@ TEST(Inspect_issue_17, flat_fan_certificates_keep_the_exact_count)
   ASSERT_TRUE(rm.self_intersections_counted);
   EXPECT_GT(cgal_pairs.size(), 0u);
   EXPECT_EQ(rm.self_intersecting_pairs, cgal_pairs.size());
+}
+
+// Issue 17: the fan of a vertex is put together from its corners' own edges
+// (a vertex-corner table, no walk over the edges' corner lists). One
+// consistently oriented fan of triangles, closed or open, is certified; a
+// flipped face, a third face on an edge, a quad, two fans at the vertex and
+// a face with a repeated index are not. The table the inspection passes in
+// gives the certificates the counter builds for itself.
+TEST(Inspect_issue_17, fan_certificates_need_one_consistent_fan_of_triangles)
+{
+  namespace I = mrepair::internal;
+  auto hexagon = [] {
+    Soup s;
+    s.points.emplace_back(0., 0., 0.);
+    for (int i = 0; i < 6; ++i)
+      s.points.emplace_back(std::cos(CGAL_PI * i / 3), std::sin(CGAL_PI * i / 3), 0.01 * (i % 2));
+    for (std::size_t i = 0; i < 6; ++i) s.polygons.push_back({0, 1 + i, 1 + (i + 1) % 6});
+    return s;
+  };
+  auto certified = [](const Soup& s) {
+    I::Surface_arrays a;
+    std::size_t invalid = 0;
+    EXPECT_TRUE(I::build_soup_arrays(s.points, s.polygons, a, invalid));
+    I::certify_flat_stars(a);
+    std::vector<unsigned char> own = a.flat_star;
+    std::vector<I::Inspect_index> first, corners;
+    I::bucket_items(a.corner_v.size(), a.num_vertices, I::inspect_npos,
+                    [&](std::size_t c) { return a.corner_v[c]; }, first, corners);
+    I::certify_flat_stars(a, first, corners);
+    EXPECT_EQ(own, a.flat_star);
+    return a.flat_star;
+  };
+
+  const Soup closed = hexagon();
+  std::vector<unsigned char> f = certified(closed);
+  EXPECT_EQ(f[0], 1);  // closed fan
+  for (std::size_t v = 1; v <= 6; ++v) EXPECT_EQ(f[v], 1) << v;  // open fans of two faces
+
+  Soup open = hexagon();
+  open.polygons.erase(open.polygons.begin() + 2);
+  EXPECT_EQ(certified(open)[0], 1);
+
+  Soup flipped = hexagon();
+  std::swap(flipped.polygons[3][1], flipped.polygons[3][2]);
+  EXPECT_EQ(certified(flipped)[0], 0);
+
+  Soup fin = hexagon();
+  fin.points.emplace_back(0.5, 0., 1.);
+  fin.polygons.push_back({0, 1, 7});
+  f = certified(fin);
+  EXPECT_EQ(f[0], 0);
+  EXPECT_EQ(f[1], 0);
+
+  Soup quad = hexagon();
+  quad.polygons.erase(quad.polygons.begin(), quad.polygons.begin() + 2);
+  quad.polygons.push_back({0, 1, 2, 3});
+  EXPECT_EQ(certified(quad)[0], 0);
+
+  Soup bowtie = hexagon();
+  bowtie.polygons.erase(bowtie.polygons.begin() + 3);
+  bowtie.polygons.erase(bowtie.polygons.begin());
+  EXPECT_EQ(certified(bowtie)[0], 0);  // two open fans: rims 2-3-4 and 5-6-1
+
+  Soup repeated = hexagon();
+  repeated.polygons.push_back({0, 0, 4});
+  EXPECT_EQ(certified(repeated)[0], 0);
+}
+
+// The counter's outward rounding of box sides steps like std::nextafter.
+TEST(Inspect_issue_17, box_sides_step_like_nextafter)
+{
+  namespace I = mrepair::internal;
+  std::vector<float> values = {0.f, -0.f, 1.f, -1.f, 1e-45f, -1e-45f, FLT_MIN, -FLT_MIN, FLT_MAX, -FLT_MAX,
+                               HUGE_VALF, -HUGE_VALF, 3.14159f, -2.5e-30f, 7.5e30f};
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 10000; ++i) values.push_back(static_cast<float>(u(rng) * std::pow(10., int(rng() % 70) - 35)));
+  for (float x : values)
+    for (bool up : {false, true}) {
+      const float a = I::float_step(x, up), b = std::nextafter(x, up ? HUGE_VALF : -HUGE_VALF);
+      EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << x << (up ? " up" : " down");
+    }
 }

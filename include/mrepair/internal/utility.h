@@ -25,8 +25,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <memory>
 #include <numeric>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace mrepair {
@@ -227,6 +229,45 @@ void parallel_for_mesh_elements(std::size_t n, const F& f, bool allowed = true)
   else
     for (std::size_t i = 0; i < n; ++i) f(i);
 }
+
+// ---- buffers filled in parallel ------------------------------------------------
+/// an allocator whose `construct()` without arguments default-initialises:
+/// `resize(n)` of a vector of trivial values then writes nothing. A large
+/// array that a parallel loop fills anyway is otherwise zeroed first, on one
+/// thread, which at 10M faces is also where all its pages fault in; left
+/// alone, they fault in on the threads that fill them.
+template <typename T, typename Base = std::allocator<T>>
+class Default_init_allocator : public Base
+{
+  using Traits = std::allocator_traits<Base>;
+
+public:
+  template <typename U>
+  struct rebind
+  {
+    using other = Default_init_allocator<U, typename Traits::template rebind_alloc<U>>;
+  };
+  using Base::Base;
+  Default_init_allocator() = default;
+  template <typename U, typename B>
+  Default_init_allocator(const Default_init_allocator<U, B>& other) : Base(other) {}
+
+  template <typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args)
+  {
+    Traits::construct(static_cast<Base&>(*this), p, std::forward<Args>(args)...);
+  }
+};
+
+/// a vector whose `resize(n)` leaves trivial values unwritten: for arrays that
+/// are filled in full, in parallel, right after (see above).
+template <typename T>
+using Parallel_filled_vector = std::vector<T, Default_init_allocator<T>>;
 
 // ---- union-find --------------------------------------------------------------
 /// disjoint sets over [0, n), with path halving; the smaller index is the root,

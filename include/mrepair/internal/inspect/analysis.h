@@ -103,7 +103,6 @@ public:
     MREPAIR_INSPECT_STEP(near_degenerate())
     MREPAIR_INSPECT_STEP(components())
     MREPAIR_INSPECT_STEP(non_manifold_vertices())
-    free_memory(vertex_corner_first_, vertex_corners_);  // built by vertex_accumulation, read up to here
     if (border_cycles) {
       MREPAIR_INSPECT_STEP(count_loops(*border_cycles))
     } else {
@@ -114,6 +113,12 @@ public:
 #undef MREPAIR_INSPECT_STEP
     release_per_element_arrays();
   }
+
+  // The corners of each vertex, in corner order: built by the vertex pass,
+  // kept after run() for certify_flat_stars(), then released.
+  const std::vector<Inspect_index>& vertex_corner_first() const { return vertex_corner_first_; }
+  const std::vector<Inspect_index>& vertex_corners() const { return vertex_corners_; }
+  void release_vertex_corners() { free_memory(vertex_corner_first_, vertex_corners_); }
 
   // Self-intersecting pairs of distinct triangles (see self_intersections.h);
   // run after `run()`, only when every face is a triangle with finite corners.

@@ -20,15 +20,17 @@ namespace internal {
 // triangle, every vertex of a face finite.
 // Frees the arrays the counter does not read in any case.
 template <typename VisitorHandle>
-void count_self_intersections(Surface_arrays& a, const Surface_analysis& analysis, bool asked,
+void count_self_intersections(Surface_arrays& a, Surface_analysis& analysis, bool asked,
                               VisitorHandle& visitor, Inspection_report& r)
 {
   if (!asked || analysis.non_finite_referenced != 0 || r.faces == 0 || r.triangles != r.faces) {
+    analysis.release_vertex_corners();
     keep_for_self_intersections(a);
     return;
   }
   Phase_scope<VisitorHandle> phase(visitor, "inspect: self-intersections");
-  certify_flat_stars(a);
+  certify_flat_stars(a, analysis.vertex_corner_first(), analysis.vertex_corners());
+  analysis.release_vertex_corners();
   keep_for_self_intersections(a);
   r.self_intersecting_pairs = analysis.self_intersecting_pairs();
   r.self_intersections_counted = true;

@@ -15,9 +15,10 @@ namespace mrepair {
 namespace internal {
 
 // Turns counts into offsets in place (exclusive prefix sum); returns the total.
-template <typename T>
-T exclusive_scan_in_place(std::vector<T>& v)
+template <typename Vector>
+typename Vector::value_type exclusive_scan_in_place(Vector& v)
 {
+  using T = typename Vector::value_type;
   T sum = 0;
   for (T& x : v) {
     T c = x;
