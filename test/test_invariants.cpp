@@ -903,6 +903,60 @@ TEST(RepairJob, TriangleArraysGiveTheSameMeshAsPolygonVectors)
   }
 }
 
+// Issue 17: up to `concurrent_inspection_polygons` polygons the inspection of
+// the input runs beside the soup stage. The job is the same either way: the
+// same mesh, the same report (timings aside), the stages reported in the
+// same order, "before" first.
+TEST(RepairJob, InputInspectionBesideTheSoupStageChangesNothing)
+{
+  using Mesh = CGAL::Surface_mesh<Point>;
+  Soup s = icosphere(4, 1.0);
+  s.polygons.push_back(s.polygons[11]);                                  // a duplicate
+  s.polygons.erase(s.polygons.begin() + 300, s.polygons.begin() + 304);  // a hole
+  s.points[s.polygons[900][1]] = Point(0, 0, 2.5);                       // a spike
+  s = merged(s, translated(icosphere(1, 0.05), 3, 0, 0));                // a small component
+  s = merged(s, translated(grid(6, 6, 0.1), -3, 0, 0));                  // an open sheet
+  auto run = [&](std::size_t beside, std::vector<std::string>& stages, Mesh& m) {
+    std::vector<Point> points = s.points;
+    std::vector<Polygon> polygons = s.polygons;
+    mrepair::Repair_options options;
+    options.concurrent_inspection_polygons = beside;
+    options.after_stage = [&](const char* stage, const mrepair::Repair_result&) { stages.push_back(stage); };
+    mrepair::Repair_result r = mrepair::repair_polygon_soup(points, polygons, m, options);
+    EXPECT_TRUE(points.empty() && polygons.empty());  // freed once the mesh is built
+    std::string json, line;
+    std::istringstream lines(r.sections.to_json());
+    while (std::getline(lines, line))
+      if (line.find("\"seconds\"") == std::string::npos) json += line + "\n";
+    return std::make_pair(r, json);
+  };
+  std::vector<std::string> one_by_one, side_by_side;
+  Mesh m1, m2;
+  const auto a = run(0, one_by_one, m1);
+  const auto b = run(std::size_t(-1), side_by_side, m2);
+  EXPECT_EQ(a.first.status, b.first.status) << a.first.message << " / " << b.first.message;
+  EXPECT_GE(a.first.before.duplicate_faces, 1u);
+  EXPECT_GE(a.first.before.boundary_loops, 2u);
+  EXPECT_EQ(a.second, b.second);
+  EXPECT_EQ(a.second.find("\"before\""), b.second.find("\"before\""));
+  EXPECT_LT(a.second.find("\"before\""), a.second.find("\"soup_to_manifold\""));
+  ASSERT_GE(one_by_one.size(), 2u);
+  EXPECT_EQ(one_by_one, side_by_side);
+  EXPECT_EQ(one_by_one[0], "before");
+  EXPECT_EQ(one_by_one[1], "soup_to_manifold");
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m1));
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m2));
+  ASSERT_EQ(num_vertices(m1), num_vertices(m2));
+  ASSERT_EQ(num_faces(m1), num_faces(m2));
+  for (auto v : vertices(m1)) EXPECT_EQ(m1.point(v), m2.point(v)) << v;
+  for (auto f : faces(m1)) {
+    std::vector<std::size_t> x, y;
+    for (auto v : CGAL::vertices_around_face(halfedge(f, m1), m1)) x.push_back(v);
+    for (auto v : CGAL::vertices_around_face(halfedge(f, m2), m2)) y.push_back(v);
+    EXPECT_EQ(x, y) << f;
+  }
+}
+
 TEST(TimeBudgetVisitor, ForwardsHooksAndHonoursTheInnerStop)
 {
   struct Recorder : mrepair::Default_visitor

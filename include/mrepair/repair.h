@@ -26,6 +26,10 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/task_group.h>
+#endif
+
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -65,6 +69,12 @@ struct Repair_options
   /// scan it took 1.9 s of a 6.8 s job (the soup's pairs are informative only:
   /// the cleaning does not aim at them), so the report costs less than the repair.
   bool count_input_self_intersections = false;
+  /// up to this many input polygons, the inspection of the input runs beside
+  /// the soup stage: both only read the input, and the soup stage is mostly
+  /// sequential, so the inspection uses the cores it leaves idle (TBB). Above
+  /// it they run one after the other, so that their memory peaks do not add
+  /// up (10M faces: 1.1 and 1.0 GB beside the 0.6 GB input). 0: never.
+  std::size_t concurrent_inspection_polygons = 4000000;
   /// called after the stages "before" (input inspected), "soup_to_manifold"
   /// (the mesh built, the soup's memory freed), "close_gaps" (when it ran),
   /// "clean" (profile chosen) and "after" (output inspected), with the result
@@ -114,7 +124,8 @@ struct Repair_result
 /// the user's model (the safety policy of `clean_scan_mesh()`).
 ///
 /// \code
-/// before <- inspect_polygon_soup(points, polygons)
+/// before <- inspect_polygon_soup(points, polygons)      -- beside the next
+///   step up to concurrent_inspection_polygons polygons
 /// if every point is finite and the soup is a manifold, consistently oriented mesh:
 ///   build it directly
 /// else:
@@ -187,11 +198,34 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
                                                   inspect_spike, MP::count_self_intersections(
                                                                      options.count_self_intersections &&
                                                                      options.count_input_self_intersections))));
-  result.before = inspect_polygon_soup(points, polygons, thresholds);
-  result.before.to_report(report.section("before"));
-  report.section("before").add("seconds", stage_clock.seconds());
-  stage_done("before");
-  if (stop_requested()) return fail("before", Status::cancelled, "");
+  double before_seconds = 0.;
+  auto inspect_input = [&] {
+    internal::Stopwatch clock;
+    result.before = inspect_polygon_soup(points, polygons, thresholds);
+    before_seconds = clock.seconds();
+  };
+  auto report_input = [&] {
+    result.before.to_report(report.section("before"));
+    report.section("before").add("seconds", before_seconds);
+    stage_done("before");
+  };
+  // 1. A manifold mesh, built directly when the soup already is one. Beside
+  // it, on smaller inputs, the inspection of the input (see
+  // `concurrent_inspection_polygons`); `waiting` outlives neither.
+  bool beside = false;
+#ifdef CGAL_LINKED_WITH_TBB
+  tbb::task_group waiting;
+  beside = polygons.size() <= options.concurrent_inspection_polygons;
+#endif
+  if (beside) {
+#ifdef CGAL_LINKED_WITH_TBB
+    waiting.run(inspect_input);
+#endif
+  } else {
+    inspect_input();
+    report_input();
+    if (stop_requested()) return fail("before", Status::cancelled, "");
+  }
 
   // Face accounting over the whole job, in triangles: each stage adds what
   // it removed and added, by reason.
@@ -200,7 +234,6 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   std::size_t faces_in = 0;
   for (const auto& poly : polygons) faces_in += poly.size() >= 3 ? poly.size() - 2 : 1;
 
-  // 1. A manifold mesh, built directly when the soup already is one.
   stage_clock.restart();
   bool finite = true;
   for (const Point& p : points)
@@ -208,16 +241,25 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
              std::isfinite(CGAL::to_double(p.y())) && std::isfinite(CGAL::to_double(p.z()));
   const bool direct = finite && is_polygon_soup_a_polygon_mesh(polygons, points.size());
   result.soup_needed = !direct;
+  Soup_repair_result s;
   if (direct) {
     CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, out);
+  } else {
+    internal::Phase_scope<Handle> phase(visitor, "soup_to_manifold");
+    s = polygon_soup_to_manifold_mesh(points, polygons, out,
+                                      MP::merge_epsilon(merge).visitor(std::ref(forward)));
+  }
+  double soup_seconds = stage_clock.seconds();
+  if (beside) {
+#ifdef CGAL_LINKED_WITH_TBB
+    waiting.wait();
+#endif
+    report_input();  // a stop asked for meanwhile is the soup stage's (polled there)
+  }
+  stage_clock.restart();
+  if (direct) {
     report.section("soup_to_manifold").add("needed", false);
   } else {
-    Soup_repair_result s;
-    {
-      internal::Phase_scope<Handle> phase(visitor, "soup_to_manifold");
-      s = polygon_soup_to_manifold_mesh(points, polygons, out,
-                                        MP::merge_epsilon(merge).visitor(std::ref(forward)));
-    }
     Report& sr = report.section("soup_to_manifold");
     sr.add("needed", true);
     s.to_report(sr);
@@ -240,7 +282,8 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
       return result;
     }
   }
-  report.section("soup_to_manifold").add("seconds", stage_clock.seconds());
+  soup_seconds += stage_clock.seconds();
+  report.section("soup_to_manifold").add("seconds", soup_seconds);
   stage_done("soup_to_manifold");
   if (stop_requested()) return fail("soup_to_manifold", Status::cancelled, "");
 
