@@ -13,6 +13,7 @@
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
@@ -912,4 +913,38 @@ TEST(Inspect_issue_17, box_sides_step_like_nextafter)
       const float a = I::float_step(x, up), b = std::nextafter(x, up ? HUGE_VALF : -HUGE_VALF);
       EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << x << (up ? " up" : " down");
     }
+}
+
+// Issue 17: bucket_items sorts many items in two parallel passes (ranges of
+// buckets, then buckets); the order is the one of a single stable pass:
+// buckets in order, items increasing in each, skipped items left out, empty
+// and crowded buckets alike.
+TEST(Inspect_issue_17, bucket_items_in_two_passes_keeps_the_stable_order)
+{
+  namespace I = mrepair::internal;
+  using T = I::Inspect_index;
+  const std::size_t n = (std::size_t(1) << 20) + 12345, buckets = 300007;
+  std::mt19937 rng(42);
+  std::vector<T> key(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t x = rng();
+    key[i] = x % 17 == 0 ? I::inspect_npos                        // skipped
+             : x % 13 == 0 ? T(buckets - 1)                        // a crowded last bucket
+             : T((x >> 8) % (buckets / 2) * 2);                    // odd buckets stay empty
+  }
+  std::vector<T> first, order;
+  I::bucket_items(n, buckets, I::inspect_npos, [&](std::size_t i) { return key[i]; }, first, order);
+  std::vector<std::vector<T>> expected(buckets);
+  for (std::size_t i = 0; i < n; ++i)
+    if (key[i] != I::inspect_npos) expected[key[i]].push_back(T(i));
+  ASSERT_EQ(first.size(), buckets + 1);
+  std::size_t total = 0;
+  for (std::size_t b = 0; b < buckets; ++b) {
+    ASSERT_EQ(first[b], total) << b;
+    ASSERT_TRUE(std::equal(expected[b].begin(), expected[b].end(), order.begin() + first[b])) << b;
+    total += expected[b].size();
+  }
+  EXPECT_EQ(first[buckets], total);
+  EXPECT_EQ(order.size(), total);
+  EXPECT_GT(expected[buckets - 1].size(), 50000u);
 }

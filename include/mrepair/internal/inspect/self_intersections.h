@@ -309,16 +309,9 @@ public:
       block ^= block >> 29;
       return static_cast<std::size_t>((block * 64 + ((i & 3) << 4 | (j & 3) << 2 | (l & 3))) % nb);
     };
-    std::vector<Inspect_index> boff(nb + 1, 0);
-    for (std::size_t e = 0; e < total; ++e) ++boff[bucket_of(ekey[e])];
-    exclusive_scan_in_place(boff);
-    boff[nb] = total;
-    // placed by bumping each bucket's offset, which then holds the next
-    // bucket's: shifted back by one (no copy of the offsets)
-    Parallel_filled_vector<Inspect_index> order(total);
-    for (std::size_t e = 0; e < total; ++e) order[boff[bucket_of(ekey[e])]++] = static_cast<Inspect_index>(e);
-    for (std::size_t k = nb; k > 0; --k) boff[k] = boff[k - 1];
-    boff[0] = 0;
+    std::vector<Inspect_index> boff, order;
+    bucket_items(std::size_t(total), nb, inspect_npos,
+                 [&](std::size_t e) { return static_cast<Inspect_index>(bucket_of(ekey[e])); }, boff, order);
     // Each bucket's entries are gathered with their boxes into a local array
     // first: the pair loop then reads contiguous memory instead of one random
     // box per pair (most of the counter's time on 1M faces).

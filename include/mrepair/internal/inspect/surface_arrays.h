@@ -105,17 +105,10 @@ inline void build_soup_edges(Surface_arrays& a)
     lo[c] = std::min(u, w);
     hi[c] = std::max(u, w);
   });
-  std::vector<Inspect_index> bucket(nv + 1, 0);
-  for (std::size_t c = 0; c < nc; ++c)
-    if (!a.face_skip[a.corner_f[c]]) ++bucket[lo[c]];
-  const Inspect_index total = exclusive_scan_in_place(bucket);
-  bucket[nv] = total;
-  std::vector<Inspect_index> sorted(total);
-  {
-    std::vector<Inspect_index> pos(bucket.begin(), bucket.end() - 1);
-    for (std::size_t c = 0; c < nc; ++c)
-      if (!a.face_skip[a.corner_f[c]]) sorted[pos[lo[c]]++] = static_cast<Inspect_index>(c);
-  }
+  std::vector<Inspect_index> bucket, sorted;
+  bucket_items(nc, nv, inspect_npos,
+               [&](std::size_t c) { return a.face_skip[a.corner_f[c]] ? inspect_npos : lo[c]; }, bucket, sorted);
+  const Inspect_index total = bucket[nv];
   std::vector<Inspect_index> count(nv + 1, 0);
   parallel_for_index(nv, 8192, [&](std::size_t v) {
     auto b = sorted.begin() + bucket[v], e = sorted.begin() + bucket[v + 1];

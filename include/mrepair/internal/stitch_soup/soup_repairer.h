@@ -24,6 +24,7 @@
 //              nested at odd depth (ray parity)
 //   build      halfedges written directly from the partner table
 
+#include <mrepair/internal/inspect/parallel.h>
 #include <mrepair/internal/point_grid.h>
 #include <mrepair/internal/utility.h>
 #include <mrepair/stitch_soup_result.h>
@@ -352,7 +353,7 @@ public:
     const std::size_t F = T.size();
     std::vector<Key> keys(F);
     std::vector<unsigned char> parity(F);
-    for (std::size_t t = 0; t < F; ++t) {
+    parallel_for_index(F, 16384, [&](std::size_t t) {
       std::array<Idx, 3> s = T[t];
       int mi = 0;
       if (s[1] < s[mi]) mi = 1;
@@ -361,22 +362,22 @@ public:
       parity[t] = b < c;
       if (c < b) std::swap(b, c);
       keys[t] = {(std::uint64_t(a) << 32) | b, c, Idx(t)};
-    }
-    {  // counting sort on the smallest vertex, then each bucket by (b, c, t)
-      std::vector<Idx> start(P.size() + 1, 0);
-      for (const Key& k : keys) ++start[(k.hi >> 32) + 1];
-      for (std::size_t v = 0; v < P.size(); ++v) start[v + 1] += start[v];
+    });
+    {  // counting sort on the smallest vertex (bucket_items), then each bucket by (b, c, t)
+      std::vector<Idx> start, order;
+      bucket_items(F, P.size(), none, [&](std::size_t t) { return Idx(keys[t].hi >> 32); }, start, order);
       std::vector<Key> sorted(F);
-      std::vector<Idx> pos(start.begin(), start.end() - 1);
-      for (const Key& k : keys) sorted[pos[k.hi >> 32]++] = k;
+      parallel_for_index(F, 16384, [&](std::size_t j) { sorted[j] = keys[order[j]]; });
+      free_memory(order);
       keys.swap(sorted);
-      for (std::size_t v = 0; v < P.size(); ++v)
+      parallel_for_index(P.size(), 8192, [&](std::size_t v) {
         if (start[v + 1] - start[v] > 1)
           sort_small(keys.begin() + start[v], keys.begin() + start[v + 1], [](const Key& x, const Key& y) {
             if (x.hi != y.hi) return x.hi < y.hi;
             if (x.lo != y.lo) return x.lo < y.lo;
             return x.t < y.t;
           });
+      });
     }
     std::vector<unsigned char> keep(F, 1);
     for (std::size_t i = 0; i < F;) {
@@ -428,27 +429,26 @@ public:
     Idx slot;
   };
 
-  // Sides ordered by (edge key, slot): a counting sort on the smaller vertex,
-  // then a sort of each (small) bucket; linear in practice, no comparison sort
+  // Sides ordered by (edge key, slot): a counting sort on the smaller vertex
+  // (bucket_items: in parallel on large soups), then a sort of each (small)
+  // bucket, the buckets in parallel; linear in practice, no comparison sort
   // over all sides.
   std::vector<Side_key> sorted_sides() const
   {
     const std::size_t S = 3 * T.size(), V = P.size();
-    std::vector<Idx> start(V + 1, 0);
-    for (std::size_t s = 0; s < S; ++s) ++start[std::min(src(Idx(s)), dst(Idx(s))) + 1];
-    for (std::size_t v = 0; v < V; ++v) start[v + 1] += start[v];
+    std::vector<Idx> start, order;
+    bucket_items(S, V, none, [&](std::size_t s) { return std::min(src(Idx(s)), dst(Idx(s))); }, start, order);
     std::vector<Side_key> hes(S);
-    {
-      std::vector<Idx> pos(start.begin(), start.end() - 1);
-      for (std::size_t s = 0; s < S; ++s) {
-        const Idx a = src(Idx(s)), b = dst(Idx(s));
-        hes[pos[std::min(a, b)]++] = {edge_key(a, b), Idx(s)};
-      }
-    }
-    for (std::size_t v = 0; v < V; ++v)
+    parallel_for_index(S, 16384, [&](std::size_t j) {
+      const Idx s = order[j];
+      hes[j] = {edge_key(src(s), dst(s)), s};
+    });
+    free_memory(order);
+    parallel_for_index(V, 8192, [&](std::size_t v) {
       if (start[v + 1] - start[v] > 1)
         sort_small(hes.begin() + start[v], hes.begin() + start[v + 1],
                    [](const Side_key& a, const Side_key& b) { return a.key < b.key || (a.key == b.key && a.slot < b.slot); });
+    });
     return hes;
   }
 
