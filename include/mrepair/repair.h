@@ -212,16 +212,14 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   // 1. A manifold mesh, built directly when the soup already is one. Beside
   // it, on smaller inputs, the inspection of the input (see
   // `concurrent_inspection_polygons`); `waiting` outlives neither.
-  bool beside = false;
 #ifdef CGAL_LINKED_WITH_TBB
   tbb::task_group waiting;
-  beside = polygons.size() <= options.concurrent_inspection_polygons;
+  const bool beside = polygons.size() <= options.concurrent_inspection_polygons;
+  if (beside) waiting.run(inspect_input);
+#else
+  const bool beside = false;
 #endif
-  if (beside) {
-#ifdef CGAL_LINKED_WITH_TBB
-    waiting.run(inspect_input);
-#endif
-  } else {
+  if (!beside) {
     inspect_input();
     report_input();
     if (stop_requested()) return fail("before", Status::cancelled, "");
@@ -250,12 +248,12 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
                                       MP::merge_epsilon(merge).visitor(std::ref(forward)));
   }
   double soup_seconds = stage_clock.seconds();
-  if (beside) {
 #ifdef CGAL_LINKED_WITH_TBB
+  if (beside) {
     waiting.wait();
-#endif
     report_input();  // a stop asked for meanwhile is the soup stage's (polled there)
   }
+#endif
   stage_clock.restart();
   if (direct) {
     report.section("soup_to_manifold").add("needed", false);

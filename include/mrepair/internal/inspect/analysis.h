@@ -586,11 +586,7 @@ private:
 
   // The corners of each vertex in corner order (a counting sort), read by the
   // spike test and the fans of non_manifold_vertices.
-  void vertex_corner_table()
-  {
-    bucket_items(a_.corner_v.size(), a_.num_vertices, inspect_npos, [&](std::size_t c) { return a_.corner_v[c]; },
-                 vertex_corner_first_, vertex_corners_);
-  }
+  void vertex_corner_table() { internal::vertex_corner_table(a_, vertex_corner_first_, vertex_corners_); }
   std::vector<Inspect_index> vertex_corner_first_, vertex_corners_;
 
   // The second spike criterion (spike_criterion.h, shared with relax_spikes):

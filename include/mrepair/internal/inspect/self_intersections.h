@@ -130,8 +130,7 @@ inline void certify_flat_stars(Surface_arrays& a, const std::vector<Inspect_inde
 inline void certify_flat_stars(Surface_arrays& a)
 {
   std::vector<Inspect_index> first, corners;
-  bucket_items(a.corner_v.size(), a.num_vertices, inspect_npos,
-               [&](std::size_t c) { return a.corner_v[c]; }, first, corners);
+  vertex_corner_table(a, first, corners);
   certify_flat_stars(a, first, corners);
 }
 

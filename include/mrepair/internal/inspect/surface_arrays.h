@@ -82,6 +82,15 @@ inline bool has_repeated_index(const Inspect_index* v, std::size_t k)
   return std::adjacent_find(s.begin(), s.end()) != s.end();
 }
 
+// The corners of each vertex in corner order: corners[first[v]] ..
+// corners[first[v+1]-1] (a counting sort on corner_v).
+inline void vertex_corner_table(const Surface_arrays& a, std::vector<Inspect_index>& first,
+                                std::vector<Inspect_index>& corners)
+{
+  bucket_items(a.corner_v.size(), a.num_vertices, inspect_npos,
+               [&](std::size_t c) { return a.corner_v[c]; }, first, corners);
+}
+
 // Fills corner_f from face_off.
 inline void fill_corner_faces(Surface_arrays& a)
 {
