@@ -5,6 +5,7 @@
 #include <mrepair/io.h>
 
 #include "fixtures.h"
+#include "cli.h"
 #include "cli_io.h"
 
 #include <CGAL/boost/graph/helpers.h>
@@ -18,6 +19,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <random>
 #include <set>
 #include <string>
@@ -1414,6 +1416,38 @@ TYPED_TEST(Io_mesh, large_polygons)
   EXPECT_EQ(r.status, Status::non_manifold_input);
   EXPECT_NE(r.message.find("repeats a vertex"), std::string::npos) << r.message;
 }
+
+// ---- the allocator policy of `mrepair repair` (tools/cli.h) ----------------------
+
+// glibc only, and not under a sanitizer (its allocator replaces glibc's)
+#if defined(__GLIBC__) && (__GLIBC__ > 2 || __GLIBC_MINOR__ >= 33) && !defined(__SANITIZE_ADDRESS__) && \
+    !defined(__SANITIZE_THREAD__)
+TEST(Cli_memory, large_blocks_come_from_the_heap_only_while_asked)
+{
+  // 64 MB: above any threshold glibc accepts, so mapped unless told otherwise
+  const std::size_t big = std::size_t(64) << 20;
+  auto mapped_bytes = [] { return mallinfo2().hblkhd; };
+  auto allocate = [&] {
+    std::unique_ptr<char[]> p(new char[big]);
+    p[0] = p[big - 1] = 1;
+    asm volatile("" : : "g"(p.get()) : "memory");  // keep the allocation
+    return p;
+  };
+  mrepair::cli::serve_large_blocks_from_heap(true);
+  {
+    const std::size_t before = mapped_bytes();
+    const auto p = allocate();
+    EXPECT_LT(mapped_bytes(), before + big);
+  }
+  mrepair::cli::release_freed_memory_above(0);
+  mrepair::cli::serve_large_blocks_from_heap(false);  // glibc's default again
+  {
+    const std::size_t before = mapped_bytes();
+    const auto p = allocate();
+    EXPECT_GE(mapped_bytes(), before + big);
+  }
+}
+#endif
 
 // ---- the CLI helpers (tools/cli_io.h) -------------------------------------------
 

@@ -150,6 +150,32 @@ inline void release_freed_memory()
 #endif
 }
 
+/// `release_freed_memory()` when the allocator holds more than `bytes`
+/// freed (a trim costs the page faults of reusing what it released: on
+/// small jobs it is a loss).
+inline void release_freed_memory_above(std::size_t bytes)
+{
+#if defined(__GLIBC__) && (__GLIBC__ > 2 || __GLIBC_MINOR__ >= 33)
+  if (mallinfo2().fordblks > bytes) malloc_trim(0);
+#else
+  (void)bytes;
+#endif
+}
+
+/// whether glibc serves blocks above its mmap threshold from the heap too
+/// (true) or maps each one afresh and unmaps it when freed (false, its
+/// default). The heap keeps freed pages warm for the next block, where a
+/// fresh map faults every page in again; but a heap fragments, so its
+/// resident size can exceed what is live (see `run_repair`).
+inline void serve_large_blocks_from_heap(bool heap)
+{
+#if defined(__GLIBC__)
+  mallopt(M_MMAP_MAX, heap ? 0 : 65536);  // 65536: glibc's default
+#else
+  (void)heap;
+#endif
+}
+
 inline std::vector<Command>& registry()
 {
   static std::vector<Command> commands;
@@ -216,6 +242,7 @@ class Progress_printer : public Default_visitor
   bool enabled_;
   bool tty_;
   int last_percent_ = -1;
+  std::size_t release_above_ = 0;
 
 public:
   explicit Progress_printer(bool enabled = true)
@@ -226,11 +253,16 @@ public:
     open_.push_back({name, Clock::now()});
     last_percent_ = -1;
   }
+  /// frees the memory the allocator holds at the end of every phase, when
+  /// it is more than `bytes` (`release_freed_memory_above`; 0: never):
+  /// bounds the resident size of a heap that serves large blocks.
+  void release_memory_after_phases(std::size_t bytes) { release_above_ = bytes; }
   void end_phase(const char* name)
   {
     if (open_.empty()) return;
     double s = std::chrono::duration<double>(Clock::now() - open_.back().start).count();
     open_.pop_back();
+    if (release_above_ > 0) release_freed_memory_above(release_above_);
     if (enabled_) {
       if (tty_) std::cerr << "\r\033[K";
       std::cerr << "  " << std::string(2 * open_.size(), ' ') << name << ": "

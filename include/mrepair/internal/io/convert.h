@@ -83,12 +83,10 @@ void raw_to_soup(const std::string& path, Raw_soup& raw, std::vector<Point>& poi
 {
   try {
     points.reserve(raw.num_points());
-    advise_huge_pages(points.data(), raw.num_points() * sizeof(Point));
     for (std::size_t i = 0; i < raw.num_points(); ++i)
       points.emplace_back(raw.xyz[3 * i], raw.xyz[3 * i + 1], raw.xyz[3 * i + 2]);
     raw.xyz = Big_vector<double>();
     polygons.reserve(raw.num_polygons());
-    advise_huge_pages(polygons.data(), raw.num_polygons() * sizeof(Polygon));
     polygons.resize(raw.num_polygons());
     // in parallel: allocating a million small polygons is the cost here, and
     // each thread allocates from its own arena
