@@ -1419,9 +1419,17 @@ TYPED_TEST(Io_mesh, large_polygons)
 
 // ---- the allocator policy of `mrepair repair` (tools/cli.h) ----------------------
 
-// glibc only, and not under a sanitizer (its allocator replaces glibc's)
-#if defined(__GLIBC__) && (__GLIBC__ > 2 || __GLIBC_MINOR__ >= 33) && !defined(__SANITIZE_ADDRESS__) && \
-    !defined(__SANITIZE_THREAD__)
+// glibc only, and not under a sanitizer (its allocator replaces glibc's;
+// GCC names the sanitizers by macros, clang by __has_feature)
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+#define MREPAIR_TEST_OWN_ALLOCATOR 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define MREPAIR_TEST_OWN_ALLOCATOR 1
+#endif
+#if defined(__GLIBC__) && (__GLIBC__ > 2 || __GLIBC_MINOR__ >= 33) && !defined(MREPAIR_TEST_OWN_ALLOCATOR)
 TEST(Cli_memory, large_blocks_come_from_the_heap_only_while_asked)
 {
   // 64 MB: above any threshold glibc accepts, so mapped unless told otherwise
