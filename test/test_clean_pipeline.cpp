@@ -1110,6 +1110,38 @@ TEST(Cli, polygon_meshes_are_triangulated)
 #endif
 }
 
+// Issue 17: `mrepair repair` writes its output beside the inspection of the
+// output (a task started once the cleaning succeeded). One thread runs the
+// task at the join instead: the file and the report are the same.
+TEST(Cli, repair_writes_the_same_file_on_one_thread_and_beside_the_inspection)
+{
+#ifdef MREPAIR_CLI
+  if (!std::ifstream(MREPAIR_CLI)) GTEST_SKIP() << "mrepair not built";
+  const std::string dir = ::testing::TempDir(), in = std::string(MREPAIR_SAMPLE_DIR) + "/sample_scan.off";
+  auto run = [&](const char* threads) {
+    const std::string out = dir + "mrepair_cli_beside_" + threads + ".off",
+                      report = dir + "mrepair_cli_beside_" + threads + ".json";
+    std::remove(out.c_str());
+    const std::string cmd = std::string("MREPAIR_THREADS=") + threads + " " + MREPAIR_CLI + " repair " + in +
+                            " " + out + " --quiet --report " + report + " > /dev/null 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    std::ifstream f(out), r(report);
+    std::string file((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>()),
+        json((std::istreambuf_iterator<char>(r)), std::istreambuf_iterator<char>());
+    EXPECT_NE(json.find("\"output\""), std::string::npos) << threads;
+    return file;
+  };
+  const std::string one = run("1"), two = run("2");
+  ASSERT_FALSE(one.empty());
+  EXPECT_EQ(one, two);
+  Surface_mesh m;
+  ASSERT_EQ(mrepair::read_polygon_mesh(dir + "mrepair_cli_beside_2.off", m).status, mrepair::Status::ok);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+#else
+  GTEST_SKIP() << "MREPAIR_CLI not defined";
+#endif
+}
+
 }  // namespace
 
 // Issue 17: on a large Surface_mesh the components are labelled by a parallel

@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <random>
@@ -364,6 +365,40 @@ TYPED_TEST(Keeps_model, flattened_pillow_goes_as_a_duplicate_pair)
   EXPECT_EQ(v.duplicate_faces_removed, 2u);
   EXPECT_EQ(face_count(m), 12u);
   EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+}
+
+// Issue 17: ensure_valid_mesh finds duplicate faces by bucketing them on
+// their smallest vertex index instead of sorting all of them. Over 2^20
+// triples (the parallel bucketing), with many repeats and a face order that
+// is not the item order, the pairs are those of the global sort, in its order.
+TEST(Keeps_model_validity, duplicate_triples_pair_as_the_global_sort_pairs_them)
+{
+  using Triple = std::array<std::uint32_t, 3>;
+  const std::size_t n = (std::size_t(1) << 20) + 4321, indices = 70000;
+  std::mt19937 rng(17);
+  std::vector<Triple> tri(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i > 0 && rng() % 50 == 0) {
+      tri[i] = tri[rng() % i];  // a repeat of an earlier face
+    } else {
+      const std::uint32_t a = rng() % indices, b = rng() % 8, c = rng() % 8;
+      tri[i] = {a, std::min<std::uint32_t>(a + b, indices - 1), std::min<std::uint32_t>(a + b + c, indices - 1)};
+    }
+  }
+  // faces compare in the reverse of the item order
+  auto face_less = [](std::size_t x, std::size_t y) { return x > y; };
+  const auto pairs = mrepair::internal::validity::same_vertex_triples(tri, indices, face_less);
+
+  std::vector<std::size_t> all(n);
+  for (std::size_t i = 0; i < n; ++i) all[i] = i;
+  std::sort(all.begin(), all.end(), [&](std::size_t x, std::size_t y) {
+    return tri[x] != tri[y] ? tri[x] < tri[y] : face_less(x, y);
+  });
+  std::vector<std::pair<std::size_t, std::size_t>> expected;
+  for (std::size_t k = 1; k < n; ++k)
+    if (tri[all[k]] == tri[all[k - 1]]) expected.emplace_back(all[k - 1], all[k]);
+  ASSERT_GT(expected.size(), std::size_t(20000));
+  EXPECT_EQ(pairs, expected);
 }
 
 TYPED_TEST(Keeps_model, moebius_strip_stays_an_open_strip)

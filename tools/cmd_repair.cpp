@@ -17,6 +17,10 @@
 #include <cmath>
 #include <limits>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/task_group.h>
+#endif
+
 namespace {
 
 using K = CGAL::Epick;
@@ -121,8 +125,33 @@ int run_repair(int argc, char** argv)
   options.max_clean_iterations = static_cast<std::size_t>(iterations);
   options.count_self_intersections = count_si;
   options.count_input_self_intersections = a.has("input-self-intersections");
+  Mesh mesh;
+  // The output is final once the cleaning has succeeded (the inspection of
+  // the output only reads it): it is written beside that inspection. On the
+  // noisy 10M-face scan the write takes 0.46 s of a 33 s job.
+  mrepair::Io_result out;
+  double write_seconds = 0.;
+  auto write_output = [&] {
+    write_seconds = cli::timed([&] { out = mrepair::write_polygon_mesh(a.positional[1], mesh, a.has("binary")); });
+  };
+  bool written_beside = false;
+#ifdef CGAL_LINKED_WITH_TBB
+  tbb::task_group writing;  // declared after `mesh`: an exception waits for the write
+#endif
+  auto start_write = [&](const mrepair::Repair_result& r) {
+    if (!r.failed_stage.empty()) return;  // a stage failed: the job ends without writing
+#ifdef CGAL_LINKED_WITH_TBB
+    if (mrepair::succeeded(r.clean.status) || r.clean.status == mrepair::Status::empty_input) {
+      writing.run(write_output);
+      written_beside = true;
+    }
+#else
+    (void)r;
+#endif
+  };
   options.after_stage = [&](const char* stage, const mrepair::Repair_result& r) {
     const std::string s = stage;
+    if (s == "clean") start_write(r);
     if (s == "soup_to_manifold") {
       mrepair::cli::release_freed_memory();
       mrepair::cli::serve_large_blocks_from_heap(false);
@@ -145,12 +174,14 @@ int run_repair(int argc, char** argv)
                 << r.clean.profile.reason << "\n";
     if (s == "after") print_inspection("after", r.after, quiet);
   };
-  Mesh mesh;
   const mrepair::Repair_result r =
       all_triangles ? mrepair::repair_polygon_soup(points, triangles, mesh, options,
                                                    CGAL::parameters::visitor(std::ref(printer)))
                     : mrepair::repair_polygon_soup(points, polygons, mesh, options,
                                                    CGAL::parameters::visitor(std::ref(printer)));
+#ifdef CGAL_LINKED_WITH_TBB
+  writing.wait();
+#endif
   r.to_report(report);
   if (!r.failed_stage.empty()) {
     cli::emit_report(a, report);
@@ -159,11 +190,10 @@ int run_repair(int argc, char** argv)
                                                        : r.message);
   }
 
-  mrepair::Io_result out;
-  t = cli::timed([&] { out = mrepair::write_polygon_mesh(a.positional[1], mesh, a.has("binary")); });
-  if (!quiet) std::cerr << "  write: " << std::to_string(t).substr(0, 6) << " s\n";
+  if (!written_beside) write_output();
+  if (!quiet) std::cerr << "  write: " << std::to_string(write_seconds).substr(0, 6) << " s\n";
   out.to_report(report.section("output"));
-  report.section("output").add("seconds", t);
+  report.section("output").add("seconds", write_seconds);
   if (!cli::emit_report(a, report)) return 1;
   if (out.status != mrepair::Status::ok)
     return cli::fail(out.message.empty() ? a.positional[1] + ": cannot write" : out.message);

@@ -290,7 +290,9 @@ public:
         sv_.push_back(v);
       }
     }
-    for (face_descriptor f : sf_) compute_face(f);
+    // a large edit (the boundary smoothing moves 265k vertices of a 10M-face
+    // scan) recomputes its elements in parallel: each writes only its own
+    for_each(sf_, [&](face_descriptor f) { compute_face(f); });
     for (face_descriptor f : sf_)
       for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, *tm_), *tm_)) {
         if (get(hmark_, h) == fgen) continue;
@@ -303,8 +305,8 @@ public:
           sv_.push_back(t);
         }
       }
-    for (halfedge_descriptor h : sh_) compute_edge(h);
-    for (vertex_descriptor v : sv_) compute_vertex(v);
+    for_each(sh_, [&](halfedge_descriptor h) { compute_edge(h); });
+    for_each(sv_, [&](vertex_descriptor v) { compute_vertex(v); });
     if (journal_) journal_->insert(journal_->end(), sv_.begin(), sv_.end());
   }
 
