@@ -24,6 +24,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <random>
 #include <set>
 #include <string>
 
@@ -1143,6 +1144,41 @@ TEST(Cli, repair_writes_the_same_file_on_one_thread_and_beside_the_inspection)
 }
 
 }  // namespace
+
+// Issue 17: clean_boundaries charges each face next to its confidence region
+// to the loop of the face's first region vertex in BFS order. On a large
+// Surface_mesh the faces are counted in parallel, by the vertex of lowest
+// rank: the same counts as the sequential pass, with removed vertices in the
+// index range and a list in no index order.
+TEST(Clean_issue_17, parallel_region_face_counts_match_the_sequential_pass)
+{
+  namespace CP = mrepair::internal::clean_pipeline;
+  Surface_mesh m = to_mesh<Surface_mesh>(grid(180, 180, 0.1));
+  // a few holes: removed faces and vertices stay in the index range
+  std::vector<Surface_mesh::Face_index> doomed;
+  for (auto f : faces(m))
+    if (std::size_t(f) % 997 == 0) doomed.push_back(f);
+  for (auto f : doomed) CGAL::Euler::remove_face(halfedge(f, m), m);
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  // a list of 24,000 vertices in a scrambled order, labelled with 37 loops
+  std::vector<Surface_mesh::Vertex_index> list;
+  for (auto v : vertices(m))
+    if (std::size_t(v) % 4 != 3) list.push_back(v);
+  list.resize(24000);
+  std::mt19937 rng(5);
+  std::shuffle(list.begin(), list.end(), rng);
+  auto region = get(CGAL::dynamic_vertex_property_t<int>(), m);
+  for (std::size_t i = 0; i < list.size(); ++i) put(region, list[i], int((i * 7919) % 37));
+  auto fmark = get(CGAL::dynamic_face_property_t<char>(), m);
+  std::vector<std::size_t> parallel(37, 0), sequential(37, 0);
+  CP::count_region_faces(m, list, region, fmark, parallel, true);
+  CP::count_region_faces(m, list, region, fmark, sequential, false);
+  EXPECT_EQ(parallel, sequential);
+  std::size_t total = 0;
+  for (std::size_t c : sequential) total += c;
+  EXPECT_GT(total, std::size_t(40000));
+  for (auto f : faces(m)) ASSERT_EQ(get(fmark, f), 0);  // left as it was
+}
 
 // Issue 17: on a large Surface_mesh the components are labelled by a parallel
 // union-find. Same numbering (order of each component's first face), counts

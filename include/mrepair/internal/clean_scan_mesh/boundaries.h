@@ -10,6 +10,7 @@
 #include <mrepair/internal/clean_scan_mesh/safety.h>
 #include <mrepair/internal/clean_scan_mesh/small_components.h>
 #include <mrepair/internal/local_operations.h>
+#include <mrepair/internal/utility.h>
 #include <mrepair/status.h>
 
 #include <CGAL/boost/graph/helpers.h>
@@ -147,6 +148,61 @@ std::size_t smooth_boundary_ring(Local_operations<PM, VPM>& ops, std::size_t ite
   return set.size();
 }
 
+/// Counts the faces next to the confidence region `region_list` (BFS order),
+/// each once, for the loop `region` gives its first vertex in that order.
+/// `fmark` (all 0) is left as it was. On a Surface_mesh with a large region
+/// (unless `parallel` is false) in parallel: a face goes to its vertex of lowest rank in the list (at 10M
+/// faces 1.3M region vertices, 0.3 s one after the other).
+template <typename PM, typename RegionMap, typename FaceMark>
+void count_region_faces(PM& pm, const std::vector<typename boost::graph_traits<PM>::vertex_descriptor>& region_list,
+                        const RegionMap& region, FaceMark& fmark, std::vector<std::size_t>& count,
+                        bool parallel = true)
+{
+  using face_descriptor = typename boost::graph_traits<PM>::face_descriptor;
+  if constexpr (Is_surface_mesh<PM>::value) {
+    if (parallel && region_list.size() > 20000) {
+      // 0 outside the region, else the position in the list plus one (new
+      // dynamic maps hold value-initialised entries)
+      auto rank = get(CGAL::dynamic_vertex_property_t<std::size_t>(), pm);
+      parallel_for_index(region_list.size(), 8192, [&](std::size_t i) { put(rank, region_list[i], i + 1); });
+      // vertices in index order, not the list's: one loop after another
+      // in the list is a cache miss at each vertex, in the index order the
+      // mesh's layout is (0.25 -> 0.05 s)
+      using Vertex_index = typename PM::Vertex_index;
+      using size_type = typename PM::size_type;
+      const std::size_t slots = pm.number_of_vertices() + pm.number_of_removed_vertices();
+      auto parts = chunked<std::vector<int>>(slots, [&](std::size_t b, std::size_t e, std::vector<int>& loops) {
+        for (std::size_t k = b; k < e; ++k) {
+          const Vertex_index v(static_cast<size_type>(k));
+          const std::size_t own = get(rank, v);
+          if (own == 0) continue;
+          for (auto h : CGAL::halfedges_around_target(halfedge(v, pm), pm)) {
+            if (is_border(h, pm)) continue;
+            bool first = true;
+            for (auto w : CGAL::vertices_around_face(h, pm)) {
+              const std::size_t r = get(rank, w);
+              if (r != 0 && r < own) first = false;
+            }
+            if (first) loops.push_back(get(region, v));
+          }
+        }
+      });
+      for (const std::vector<int>& loops : parts)
+        for (int l : loops) ++count[std::size_t(l)];
+      return;
+    }
+  }
+  std::vector<face_descriptor> counted;
+  for (auto v : region_list)
+    for (auto h : CGAL::halfedges_around_target(halfedge(v, pm), pm))
+      if (!is_border(h, pm) && !get(fmark, face(h, pm))) {
+        put(fmark, face(h, pm), char(1));
+        counted.push_back(face(h, pm));
+        ++count[std::size_t(get(region, v))];
+      }
+  for (face_descriptor f : counted) put(fmark, f, char(0));
+}
+
 /// the settings of `clean_boundaries()`, read and checked by it.
 struct Boundary_settings
 {
@@ -248,18 +304,8 @@ Boundary_cleaning_result clean_boundaries_with(Local_operations<PM, VPM>& ops,
     }
   auto fmark = get(CGAL::dynamic_face_property_t<char>(), pm);  // all 0
   std::vector<std::size_t> budget(jagged.size(), 0), spent(jagged.size(), 0);
-  {
-    std::vector<face_descriptor> counted;
-    for (vertex_descriptor v : region_list)
-      for (auto h : CGAL::halfedges_around_target(halfedge(v, pm), pm))
-        if (!is_border(h, pm) && !get(fmark, face(h, pm))) {
-          put(fmark, face(h, pm), char(1));
-          counted.push_back(face(h, pm));
-          ++budget[std::size_t(get(region, v))];
-        }
-    for (face_descriptor f : counted) put(fmark, f, char(0));
-    for (std::size_t& b : budget) b = static_cast<std::size_t>(s.erosion_share * double(b));
-  }
+  count_region_faces(pm, region_list, region, fmark, budget);
+  for (std::size_t& b : budget) b = static_cast<std::size_t>(s.erosion_share * double(b));
   // Components too small to survive an erosion whole are never touched by
   // the removal of small components below: it only removes pieces the
   // erosion split off larger components.
