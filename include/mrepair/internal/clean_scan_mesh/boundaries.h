@@ -165,9 +165,10 @@ void count_region_faces(PM& pm, const std::vector<typename boost::graph_traits<P
       // dynamic maps hold value-initialised entries)
       auto rank = get(CGAL::dynamic_vertex_property_t<std::size_t>(), pm);
       parallel_for_index(region_list.size(), 8192, [&](std::size_t i) { put(rank, region_list[i], i + 1); });
-      // vertices in index order, not the list's: one loop after another
-      // in the list is a cache miss at each vertex, in the index order the
-      // mesh's layout is (0.25 -> 0.05 s)
+      // vertices in index order, not the list's: the list goes loop by loop
+      // and ring by ring, a cache miss at each vertex; the index order
+      // follows the mesh's layout (10M faces: 0.27 s in list order on one
+      // thread, 0.16 s so)
       using Vertex_index = typename PM::Vertex_index;
       using size_type = typename PM::size_type;
       const std::size_t slots = pm.number_of_vertices() + pm.number_of_removed_vertices();
