@@ -957,6 +957,58 @@ TEST(RepairJob, InputInspectionBesideTheSoupStageChangesNothing)
   }
 }
 
+// Issue 17: `output_final` tells a caller of `after_stage` that the mesh will
+// not change any more (mrepair repair writes it from the "clean" callback):
+// set when the cleaning succeeded, never when it failed or was cancelled.
+TEST(RepairJob, OutputIsFinalOnlyAfterASuccessfulCleaning)
+{
+  using Mesh = CGAL::Surface_mesh<Point>;
+  Soup s = icosphere(3, 1.0);
+  s.polygons.erase(s.polygons.begin() + 40, s.polygons.begin() + 43);  // a hole to fill
+  struct Stop_in_cleaning : mrepair::Default_visitor
+  {
+    bool cancel = false, in_cleaning = false;
+    void start_phase(const char* name)
+    {
+      if (std::string(name) == "fill_small_holes") in_cleaning = true;
+    }
+    bool stop_requested() const { return cancel && in_cleaning; }
+  };
+  for (bool cancel : {false, true}) {
+    std::vector<Point> points = s.points;
+    std::vector<Polygon> polygons = s.polygons;
+    Stop_in_cleaning visitor;
+    visitor.cancel = cancel;
+    std::vector<std::pair<std::string, bool>> seen;
+    mrepair::Repair_options options;
+    options.after_stage = [&](const char* stage, const mrepair::Repair_result& r) {
+      seen.emplace_back(stage, r.output_final);
+    };
+    Mesh m;
+    const mrepair::Repair_result r = mrepair::repair_polygon_soup(
+        points, polygons, m, options, CGAL::parameters::visitor(std::ref(visitor)));
+    ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+    ASSERT_FALSE(seen.empty());
+    for (const auto& x : seen) {
+      if (x.first != "clean" && x.first != "after") {
+        EXPECT_FALSE(x.second) << x.first;
+      }
+    }
+    if (cancel) {
+      EXPECT_EQ(r.failed_stage, "clean");
+      EXPECT_EQ(r.status, mrepair::Status::cancelled);
+      EXPECT_FALSE(r.output_final);
+      EXPECT_EQ(seen.back(), std::make_pair(std::string("clean"), false));
+    } else {
+      EXPECT_TRUE(r.failed_stage.empty()) << r.message;
+      EXPECT_TRUE(r.output_final);
+      ASSERT_GE(seen.size(), 2u);
+      EXPECT_EQ(seen[seen.size() - 2], std::make_pair(std::string("clean"), true));
+      EXPECT_EQ(seen.back(), std::make_pair(std::string("after"), true));
+    }
+  }
+}
+
 TEST(TimeBudgetVisitor, ForwardsHooksAndHonoursTheInnerStop)
 {
   struct Recorder : mrepair::Default_visitor

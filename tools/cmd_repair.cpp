@@ -139,12 +139,10 @@ int run_repair(int argc, char** argv)
   tbb::task_group writing;  // declared after `mesh`: an exception waits for the write
 #endif
   auto start_write = [&](const mrepair::Repair_result& r) {
-    if (!r.failed_stage.empty()) return;  // a stage failed: the job ends without writing
 #ifdef CGAL_LINKED_WITH_TBB
-    if (mrepair::succeeded(r.clean.status) || r.clean.status == mrepair::Status::empty_input) {
-      writing.run(write_output);
-      written_beside = true;
-    }
+    if (!r.output_final) return;  // a failed cleaning: the job ends without writing
+    writing.run(write_output);
+    written_beside = true;
 #else
     (void)r;
 #endif

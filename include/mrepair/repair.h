@@ -94,6 +94,10 @@ struct Repair_result
   std::string failed_stage;   ///< "options", "soup_to_manifold", "triangulation", "close_gaps", "clean"; empty when none failed
   std::string message;        ///< one line: `stage: status[: reason]` on failure
   bool soup_needed = false;   ///< the input was not a manifold, consistently oriented mesh
+  /// `out` is final: the cleaning succeeded (or found nothing to clean), so
+  /// only the output inspection, which reads it, is left. Set before the
+  /// "clean" callback of `after_stage`, so a caller may write `out` from there.
+  bool output_final = false;
   Inspection_report before;   ///< the input soup
   Inspection_report after;    ///< the output mesh (filled when the job ran to its end)
   Scan_cleaning_result clean; ///< the cleaning pipeline (its `profile` says which ran and why)
@@ -336,9 +340,9 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
                             : clean(CGAL::parameters::default_values());
   const Scan_cleaning_result& c = result.clean;
   c.to_report(report.section("clean"));
+  result.output_final = succeeded(c.status) || c.status == Status::empty_input;
   stage_done("clean");
-  if (!succeeded(c.status) && c.status != Status::empty_input)
-    return fail("clean", c.status, c.message);
+  if (!result.output_final) return fail("clean", c.status, c.message);
   for (std::size_t i = 0; i < number_of_clean_steps; ++i) {
     if (c.steps[i].faces_removed) removed.emplace_back(clean_step_name(i), c.steps[i].faces_removed);
     if (c.steps[i].faces_added) added.emplace_back(clean_step_name(i), c.steps[i].faces_added);

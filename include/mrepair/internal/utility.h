@@ -180,6 +180,19 @@ std::vector<Acc> chunked(std::size_t n, const F& f)
   return acc;
 }
 
+// Calls f(index, acc) for every index slot of one element kind of a
+// Surface_mesh, removed ones included (`Index` is one of its index types,
+// `slots` their number with the removed): in chunks, possibly in parallel,
+// each chunk with its own accumulator, returned in index order.
+template <typename Index, typename Acc, typename SurfaceMesh, typename F>
+std::vector<Acc> chunked_over_slots(const SurfaceMesh&, std::size_t slots, const F& f)
+{
+  using size_type = typename SurfaceMesh::size_type;
+  return chunked<Acc>(slots, [&](std::size_t b, std::size_t e, Acc& acc) {
+    for (std::size_t i = b; i < e; ++i) f(Index(static_cast<size_type>(i)), acc);
+  });
+}
+
 // The border halfedges of `pm` in the order of `halfedges(pm)`. Steps look
 // for them on every run, also when there are none (the cleaning's last
 // iterations): on Surface_mesh the index range is scanned in chunks, in
@@ -190,13 +203,9 @@ void border_halfedges(const PM& pm, std::vector<typename boost::graph_traits<PM>
   out.clear();
   if constexpr (Is_surface_mesh<PM>::value) {
     using H = typename PM::Halfedge_index;
-    using S = typename PM::size_type;
     const std::size_t slots = pm.number_of_halfedges() + pm.number_of_removed_halfedges();
-    auto parts = chunked<std::vector<H>>(slots, [&](std::size_t b, std::size_t e, std::vector<H>& part) {
-      for (std::size_t i = b; i < e; ++i) {
-        const H h(static_cast<S>(i));
-        if (!pm.is_removed(h) && pm.is_border(h)) part.push_back(h);
-      }
+    auto parts = chunked_over_slots<H, std::vector<H>>(pm, slots, [&](H h, std::vector<H>& part) {
+      if (!pm.is_removed(h) && pm.is_border(h)) part.push_back(h);
     });
     for (const std::vector<H>& part : parts) out.insert(out.end(), part.begin(), part.end());
   } else {
