@@ -526,6 +526,47 @@ TYPED_TEST(Inspect, self_intersections)
   EXPECT_NEAR(r.volume, 8.0 / 6.0 + 0.6 * 0.6 * 1.5 / 6.0, 1e-12);
 }
 
+// Faces that meet only at coincident vertices of their own (a non-manifold
+// vertex split into copies, as the soup stage and the gap closing leave it;
+// unmerged duplicate points) intersect for PMP::self_intersections; the
+// report says how many of its pairs are only such touching. Each copy taken
+// as one shared vertex (or two as a shared edge) decides it.
+TYPED_TEST(Inspect, pairs_touching_at_coincident_vertices)
+{
+  using Mesh = typename TypeParam::Mesh;
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  // one intersecting pair, as PMP counts it, of which `touching` only touch
+  auto expect_one_pair = [](const Soup& s, std::size_t touching, const char* what) {
+    const Mesh m = to_mesh<Mesh>(s);
+    std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor,
+                          typename boost::graph_traits<Mesh>::face_descriptor>> pairs;
+    PMP::self_intersections(m, std::back_inserter(pairs));
+    EXPECT_EQ(pairs.size(), 1u) << what;
+    const Inspection_report r = mrepair::inspect(m);
+    EXPECT_EQ(r.self_intersecting_pairs, 1u) << what;
+    EXPECT_EQ(r.self_intersecting_pairs_touching, touching) << what;
+    EXPECT_EQ(mrepair::inspect_polygon_soup(s.points, s.polygons).self_intersecting_pairs_touching, touching)
+        << what;
+  };
+  // a bowtie split at its centre: two copies of (0, 0, 0)
+  Soup s;
+  s.points = {Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(0, 0, 0), Point(-1, 0, 0), Point(-1, -1, 0)};
+  s.polygons = {{0, 1, 2}, {3, 4, 5}};
+  expect_one_pair(s, 1, "split bowtie");
+  // the same copies, but the second face folds back through the first
+  s.points[4] = Point(0.6, 0.2, -1);
+  s.points[5] = Point(0.6, 0.2, 1);
+  expect_one_pair(s, 0, "folded through");
+  // two triangles on copies of one edge: on either side of it, touching; on
+  // the same side (overlapping), crossing
+  Soup e;
+  e.points = {Point(0, 0, 0), Point(1, 0, 0), Point(0.5, 1, 0), Point(1, 0, 0), Point(0, 0, 0), Point(0.5, -1, 0.2)};
+  e.polygons = {{0, 1, 2}, {3, 4, 5}};
+  expect_one_pair(e, 1, "edge copies apart");
+  e.points[5] = Point(0.5, 0.5, 0);
+  expect_one_pair(e, 0, "edge copies overlapping");
+}
+
 TYPED_TEST(Inspect, t_junction_between_patches)
 {
   using Mesh = typename TypeParam::Mesh;

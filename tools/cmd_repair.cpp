@@ -56,8 +56,11 @@ void print_inspection(const char* title, const mrepair::Inspection_report& i, bo
             << i.small_components << " small), boundary loops " << i.boundary_loops << " ("
             << i.small_holes << " small), near-degenerate " << i.near_degenerate_faces
             << ", spiked " << i.spiked_vertices;
-  if (i.self_intersections_counted)
+  if (i.self_intersections_counted) {
     std::cerr << ", self-intersecting pairs " << i.self_intersecting_pairs;
+    if (i.self_intersecting_pairs_touching)
+      std::cerr << " (" << i.self_intersecting_pairs_touching << " only touching at coincident vertices)";
+  }
   std::cerr << "\n";
 }
 

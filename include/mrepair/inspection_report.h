@@ -61,6 +61,9 @@ struct Inspection_report
   double max_dihedral_angle = std::numeric_limits<double>::quiet_NaN();
   bool self_intersections_counted = false;
   std::size_t self_intersecting_pairs = 0;        ///< pairs of distinct faces
+  /// of those, the pairs that only touch at coincident vertices of their own
+  /// (the copies of a split non-manifold vertex, unmerged duplicate points)
+  std::size_t self_intersecting_pairs_touching = 0;
   std::size_t t_junctions = 0;                    ///< boundary vertices on another boundary edge
   bool closed = false;
 
@@ -144,10 +147,13 @@ struct Inspection_report
     d.add("near_degenerate_faces", near_degenerate_faces);
     d.add("collapsible_edges", collapsible_edges);
     d.add("spiked_vertices", spiked_vertices);
-    if (self_intersections_counted)
+    if (self_intersections_counted) {
       d.add("self_intersecting_pairs", self_intersecting_pairs);
-    else
+      d.add("self_intersecting_pairs_touching", self_intersecting_pairs_touching);
+    } else {
       d.add("self_intersecting_pairs", "not computed");
+      d.add("self_intersecting_pairs_touching", "not computed");
+    }
     d.add("t_junctions", t_junctions);
     d.add("closed", closed);
     Report& q = r.section("quality");

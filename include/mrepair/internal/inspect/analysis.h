@@ -122,7 +122,7 @@ public:
 
   // Self-intersecting pairs of distinct triangles (see self_intersections.h);
   // run after `run()`, only when every face is a triangle with finite corners.
-  std::size_t self_intersecting_pairs() const
+  Self_intersection_counts self_intersecting_pairs() const
   {
     const std::size_t nf = a_.num_faces();
     std::vector<unsigned char> eligible(nf);

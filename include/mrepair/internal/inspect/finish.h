@@ -32,7 +32,9 @@ void count_self_intersections(Surface_arrays& a, Surface_analysis& analysis, boo
   certify_flat_stars(a, analysis.vertex_corner_first(), analysis.vertex_corners());
   analysis.release_vertex_corners();
   keep_for_self_intersections(a);
-  r.self_intersecting_pairs = analysis.self_intersecting_pairs();
+  const Self_intersection_counts counts = analysis.self_intersecting_pairs();
+  r.self_intersecting_pairs = counts.pairs;
+  r.self_intersecting_pairs_touching = counts.touching;
   r.self_intersections_counted = true;
 }
 

@@ -160,6 +160,12 @@ inline float float_step(float f, bool up)
   return f;
 }
 
+// intersecting pairs, and how many of them only touch at coincident vertices
+struct Self_intersection_counts
+{
+  std::size_t pairs = 0, touching = 0;
+};
+
 class Self_intersection_counter
 {
   using K = CGAL::Epick;
@@ -175,7 +181,11 @@ class Self_intersection_counter
 public:
   explicit Self_intersection_counter(const Surface_arrays& a) : a_(a) {}
 
-  bool intersect(Inspect_index f, Inspect_index g) const
+  // 0: f and g do not intersect; 1: they do; 2: they do, but only where
+  // they touch at coincident vertices of their own (the copies of a split
+  // non-manifold vertex, duplicate points): taken as one shared vertex or
+  // edge, the coincident corners would leave the two faces apart.
+  int contact(Inspect_index f, Inspect_index g) const
   {
     const Inspect_index* fv = &a_.corner_v[a_.face_off[f]];
     const Inspect_index* gv = &a_.corner_v[a_.face_off[g]];
@@ -193,16 +203,31 @@ public:
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
         if (fv[i] == gv[j]) return intersect_beside_shared_vertex(fp, i, gp, j);
-    return disjoint_triangles_intersect(fp, gp);
+    if (!disjoint_triangles_intersect(fp, gp)) return 0;
+    int same = 0, fi[2] = {0, 0}, gj[2] = {0, 0};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (fp[i] == gp[j] && same < 2) {
+          fi[same] = i;
+          gj[same] = j;
+          ++same;
+        }
+    if (same == 1) return intersect_beside_shared_vertex(fp, fi[0], gp, gj[0]) ? 1 : 2;
+    if (same == 2 && fi[0] != fi[1] && gj[0] != gj[1]) {
+      const int c = 3 - fi[0] - fi[1], d = 3 - gj[0] - gj[1];
+      return overlap_across_shared_edge(fp[fi[0]], fp[fi[1]], fp[c], gp[d]) ? 1 : 2;
+    }
+    return 1;
   }
 
-  std::size_t count(const std::vector<unsigned char>& eligible) const
+  Self_intersection_counts count(const std::vector<unsigned char>& eligible) const
   {
     std::vector<Inspect_index> F;
     for (std::size_t f = 0; f < a_.num_faces(); ++f)
       if (eligible[f]) F.push_back(static_cast<Inspect_index>(f));
     const std::size_t n = F.size();
-    if (n < 2) return 0;
+    Self_intersection_counts counts;
+    if (n < 2) return counts;
     // The boxes are floats relative to the lowest corner, rounded outwards:
     // half the memory of doubles (the counter's 10M-face peak), and a float
     // box only grows, so no pair is missed (the exact test follows).
@@ -337,8 +362,12 @@ public:
         if (x[d] > y[3 + d] || y[d] > x[3 + d]) return false;
       return true;
     };
-    std::size_t pairs = 0;
-    for (std::size_t s : chunked<std::size_t>(nb, [&](std::size_t b, std::size_t e, std::size_t& s) {
+    auto add = [](Self_intersection_counts& c, int contact) {
+      c.pairs += contact != 0;
+      c.touching += contact == 2;
+    };
+    for (const Self_intersection_counts& s : chunked<Self_intersection_counts>(nb, [&](std::size_t b, std::size_t e,
+                                                                                     Self_intersection_counts& s) {
            std::vector<Entry> local;
            for (std::size_t k = b; k < e; ++k) {
              if (boff[k + 1] - boff[k] < 2) continue;
@@ -373,13 +402,15 @@ public:
                    if (key(cell(std::max(x[0], y[0]), 0), cell(std::max(x[1], y[1]), 1),
                            cell(std::max(x[2], y[2]), 2)) != ck)
                      continue; // tested in another cell
-                   if (intersect(F[p->face], F[q->face])) ++s;
+                   add(s, contact(F[p->face], F[q->face]));
                  }
                r = r_end;
              }
            }
-         }))
-      pairs += s;
+         })) {
+      counts.pairs += s.pairs;
+      counts.touching += s.touching;
+    }
 
     // big faces: against the others (box_intersection_d) and among themselves
     if (!big.empty()) {
@@ -395,13 +426,13 @@ public:
       for (std::size_t i = 0; i < n; ++i)
         if (count[i] != count[i + 1]) rest.push_back(make(i));
       auto report = [&](const Box& p, const Box& q) {
-        if (intersect(F[p.info()], F[q.info()])) ++pairs;
+        add(counts, contact(F[p.info()], F[q.info()]));
       };
       std::vector<Box> bigs2 = bigs;
       CGAL::box_intersection_d(bigs.begin(), bigs.end(), rest.begin(), rest.end(), report);
       CGAL::box_self_intersection_d(bigs2.begin(), bigs2.end(), report);
     }
-    return pairs;
+    return counts;
   }
 };
 
