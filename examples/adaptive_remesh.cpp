@@ -6,7 +6,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <mrepair/triangulate_polygons.h>
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/generators.h>
@@ -34,7 +34,7 @@ int main(int argc, char** argv)
     CGAL::make_hexahedron(K::Point_3(0, 0, 0), K::Point_3(1, 0, 0), K::Point_3(1, 1, 0),
                           K::Point_3(0, 1, 0), K::Point_3(0, 1, 1), K::Point_3(0, 0, 1),
                           K::Point_3(1, 0, 1), K::Point_3(1, 1, 1), input);
-    CGAL::Polygon_mesh_processing::triangulate_faces(input);
+    mrepair::triangulate_polygons(input);
   }
   CGAL::Bbox_3 b = CGAL::Polygon_mesh_processing::bbox(input);
   const double diag = std::sqrt(CGAL::square(b.xmax() - b.xmin()) +

@@ -7,7 +7,7 @@
 #include <mrepair/io.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <mrepair/triangulate_polygons.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <cstdlib>
@@ -49,7 +49,7 @@ int main(int argc, char** argv)
       std::cerr << "cannot read " << argv[1] << ": " << io.message << "\n";
       return 1;
     }
-    if (!CGAL::is_triangle_mesh(mesh)) CGAL::Polygon_mesh_processing::triangulate_faces(mesh);
+    mrepair::triangulate_polygons(mesh);  // ear clipping: ends on any polygon
     if (argc > 3) tolerance = std::atof(argv[3]);
   } else {
     add_patch(mesh, 0.0, 10, 10);

@@ -12,7 +12,7 @@
 #include <mrepair/stitch_soup.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <mrepair/triangulate_polygons.h>
 #include <CGAL/Real_timer.h>
 #include <CGAL/Surface_mesh.h>
 
@@ -69,7 +69,7 @@ int main(int argc, char** argv)
       std::cerr << argv[1] << ": the soup could not be made a mesh (" << mrepair::to_string(sr.status) << ")\n";
       return 1;
     }
-    if (!CGAL::is_triangle_mesh(mesh)) CGAL::Polygon_mesh_processing::triangulate_faces(mesh);
+    mrepair::triangulate_polygons(mesh);  // ear clipping: ends on any polygon
     mesh.collect_garbage();
     if (argc > 2) tolerance = std::atof(argv[2]);
     if (argc > 3) rows = std::size_t(std::max(1, std::atoi(argv[3])));

@@ -256,6 +256,21 @@ inline std::vector<Seed> seed_soups()
     Seed col{"collinear", {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 1, 3}, {1, 2, 3}}};
     s.push_back(col);
   }
+  {  // issue 36: small soups that hung or crashed `repair`
+    Seed pentagon{"polygonfaces",  // trimesh's polygonfaces.obj
+                  {{-500, 0, 500}, {500, 0, 500}, {500, 0, -500}, {-500, 0, -500}, {0, 500, -500}},
+                  {{0, 1, 2, 3, 4}}};
+    s.push_back(pentagon);
+    Seed octagon{"octagon_wide", {}, {{0, 1, 2, 3, 4, 5, 6, 7}}};  // non-planar, 1e-9 .. 1e9
+    for (int i = 0; i < 8; ++i)
+      octagon.points.push_back({std::pow(10.0, i - 4) * (i % 2 ? 1 : -1), std::pow(10.0, 9 - 2 * i % 19),
+                                i % 3 == 0 ? 1e-9 : 0.0});
+    s.push_back(octagon);
+    Seed repeats{"repeated_corners",
+                 {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}},
+                 {{0, 1, 2, 1, 3, 0}, {1, 4, 5, 2, 3, 2, 1, 0}}};
+    s.push_back(repeats);
+  }
   return s;
 }
 

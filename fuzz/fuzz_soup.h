@@ -3,7 +3,10 @@
 //   byte 0: options: bits 0-1 merge_epsilon (0, 1e-9, 1e-3, 0.6); bits 2-3
 //           snap_epsilon (0, 1e-6, 1e-2, 0.75); bit 4 keep_two_sided; bit 5
 //           orient_outward off; bit 6 also build a Polyhedron_3; bit 7 no
-//           self-intersection count in the inspection
+//           self-intersection count in the inspection. Soups of up to
+//           max_repair_polygons polygons also go through the whole job
+//           (`repair_polygon_soup`, issue 36: small soups that hung it),
+//           with the option set of bits 0-1.
 //   rest:   an encoded soup (fuzz_decode.h)
 #ifndef MREPAIR_FUZZ_SOUP_H
 #define MREPAIR_FUZZ_SOUP_H
@@ -12,6 +15,7 @@
 
 #include <mrepair/inspect.h>
 #include <mrepair/io.h>
+#include <mrepair/repair.h>
 #include <mrepair/stitch_soup.h>
 
 #include <string>
@@ -44,6 +48,42 @@ std::string soup_to_mesh(const std::vector<Point>& pts, const std::vector<Polygo
   return check_mesh(m, what, true);
 }
 
+// the whole job on a small soup: a valid mesh, a clear status, and a face
+// accounting that reconciles when the job ran to its end.
+constexpr std::size_t max_repair_polygons = 16;
+
+template <class Mesh>
+std::string repair_soup(std::vector<Point> pts, std::vector<Polygon> polys, std::uint8_t opt,
+                        const std::string& what)
+{
+  using mrepair::Status;
+  mrepair::Repair_options o;
+  switch (opt & 3) {
+    case 1: o.profile = mrepair::Input_profile::scan; break;
+    case 2:
+      o.gap_tolerance = 0.3;
+      o.merge_epsilon = 1e-6;
+      break;
+    case 3:
+      o.profile = mrepair::Input_profile::cad;
+      o.min_component_faces = 1;
+      break;
+    default: break;
+  }
+  o.count_self_intersections = (opt & 128) == 0;
+  Mesh m;
+  const mrepair::Repair_result r = mrepair::repair_polygon_soup(pts, polys, m, o);
+  if (std::string e = check_mesh(m, what, true, false); !e.empty()) return e;
+  if (r.status == Status::empty_input) return faces(m).empty() ? std::string() : what + ": empty_input with faces";
+  if (!r.failed_stage.empty()) {
+    if (r.message.empty()) return what + ": stage " + r.failed_stage + " failed without a message";
+    return {};
+  }
+  if (!mrepair::succeeded(r.status)) return what + ": unexpected status " + mrepair::to_string(r.status);
+  if (!r.faces_reconcile()) return what + ": the face accounting does not reconcile";
+  return {};
+}
+
 inline std::string run_soup(const std::uint8_t* data, std::size_t size)
 {
   using mrepair::Status;
@@ -71,6 +111,13 @@ inline std::string run_soup(const std::uint8_t* data, std::size_t size)
     if (std::string e = soup_to_mesh<Polyhedron>(pts, polys, np, "polygon_soup_to_manifold_mesh (Polyhedron_3)");
         !e.empty())
       return e;
+
+  if (polys.size() <= max_repair_polygons) {
+    if (std::string e = repair_soup<Surface_mesh>(pts, polys, opt, "repair_polygon_soup"); !e.empty()) return e;
+    if (opt & 64)
+      if (std::string e = repair_soup<Polyhedron>(pts, polys, opt, "repair_polygon_soup (Polyhedron_3)"); !e.empty())
+        return e;
+  }
 
   // the in-place soup version: a valid polygon mesh soup of finite points
   std::vector<Point> p2 = pts;

@@ -16,7 +16,7 @@
 #include <mrepair/stitch_soup.h>
 
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <mrepair/triangulate_polygons.h>
 #include <CGAL/centroid.h>
 #include <CGAL/boost/graph/helpers.h>
 
@@ -296,7 +296,7 @@ TYPED_TEST(Keeps_model, non_planar_pentagon_terminates)
               Point(-0.3, 1, 0)};
   s.polygons = {{0, 1, 2, 3, 4}};
   Mesh m = to_mesh<Mesh>(s);
-  ASSERT_TRUE(CGAL::Polygon_mesh_processing::triangulate_faces(m));
+  ASSERT_EQ(mrepair::triangulate_polygons(m).status, mrepair::Status::ok);
   for (Input_profile p : {Input_profile::automatic, Input_profile::scan}) {
     Mesh g = m;
     clean_and_check(g, p);

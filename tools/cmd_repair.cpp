@@ -198,6 +198,10 @@ int run_repair(int argc, char** argv)
   if (!cli::emit_report(a, report)) return 1;
   if (out.status != mrepair::Status::ok)
     return cli::fail(out.message.empty() ? a.positional[1] + ": cannot write" : out.message);
+  if (r.status == mrepair::Status::empty_input)
+    return cli::fail(a.positional[0] +
+                     ": nothing to repair: no face is left once degenerate, duplicate and invalid "
+                     "polygons are removed (the output is empty; the report counts them)");
   return cli::exit_code(r.status);
 }
 

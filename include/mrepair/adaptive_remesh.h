@@ -4,6 +4,7 @@
 
 #include <mrepair/internal/coordinate_range.h>
 #include <mrepair/internal/remesh/driver.h>
+#include <mrepair/internal/bounded_walks.h>
 #include <mrepair/internal/utility.h>
 #include <mrepair/parameters.h>
 #include <mrepair/remeshing_result.h>
@@ -100,6 +101,8 @@ Remeshing_result remesh_entry(TriangleMesh& tm, const FaceRange* part, Remesh_mo
   if (!(o.gamma > 0) || !std::isfinite(o.gamma))
     return fail(Status::invalid_parameter, "remesh_gamma must be positive");
   if (internal::face_count(tm) == 0) return fail(Status::empty_input, "the mesh has no faces");
+  if (std::string broken = internal::halfedge_structure_defect(tm); !broken.empty())
+    return fail(Status::invalid_mesh, "the mesh's halfedge structure is broken: " + broken);
   if (!CGAL::is_triangle_mesh(tm))
     return fail(Status::invalid_mesh, "the mesh is not a triangle mesh");
   for (auto v : vertices(tm))

@@ -7,6 +7,7 @@
 #include <mrepair/fill_small_holes.h>
 #include <mrepair/input_profile.h>
 #include <mrepair/definitions.h>
+#include <mrepair/internal/bounded_walks.h>
 #include <mrepair/internal/clean_scan_mesh/spike_steps.h>
 #include <mrepair/internal/local_operations.h>
 #include <mrepair/internal/utility.h>
@@ -350,6 +351,9 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
       !(erosion_share >= 0. && erosion_share <= 1.) || !(jag_turning >= 0.))
     return finish(Status::invalid_parameter, "a parameter is out of range");
   if (r.vertices_before == 0) return finish(Status::empty_input, "the mesh has no vertex");
+  // every walk of the steps ends on a sound structure (bounded_walks.h)
+  if (std::string broken = internal::halfedge_structure_defect(pmesh); !broken.empty())
+    return finish(Status::invalid_mesh, "the mesh's halfedge structure is broken: " + broken);
   if (!CGAL::is_triangle_mesh(pmesh))
     return finish(Status::invalid_mesh, "clean_scan_mesh needs a triangle mesh");
   // NaN vertices are removed below; finite ones must stay in range

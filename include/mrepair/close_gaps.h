@@ -23,6 +23,7 @@
 
 #include <limits>
 #include <memory>
+#include <string>
 
 MREPAIR_ADD_NAMED_PARAMETER(gap_bridge_max_edges)  // std::size_t: narrow loops bridged at the end (400; 0: none)
 
@@ -148,8 +149,15 @@ template <typename TriangleMesh,
 Gap_closing_result close_gaps(TriangleMesh& tm, Automatic_gap_tolerance,
                               const NamedParameters& np = CGAL::parameters::default_values())
 {
-  const Gap_tolerance_estimate e = estimate_gap_tolerance(tm, np);
   Gap_closing_result r;
+  r.tolerance_estimated = true;
+  // the estimate walks the border: a broken structure is refused first
+  if (std::string broken = internal::halfedge_structure_defect(tm); !broken.empty()) {
+    r.status = Status::invalid_mesh;
+    r.message = "close_gaps: the input's halfedge structure is broken: " + broken;
+    return r;
+  }
+  const Gap_tolerance_estimate e = estimate_gap_tolerance(tm, np);
   if (e.status != Status::ok) {
     r.status = e.status;
     r.message = "a boundary vertex coordinate is NaN or infinite";

@@ -2,6 +2,7 @@
 #ifndef MREPAIR_ENSURE_VALID_MESH_H
 #define MREPAIR_ENSURE_VALID_MESH_H
 
+#include <mrepair/internal/bounded_walks.h>
 #include <mrepair/internal/local_operations.h>
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
@@ -427,6 +428,11 @@ Validity_result ensure_valid_mesh(PolygonMesh& pmesh,
       bool triangles = true;
       std::vector<face_descriptor> pillows;
     };
+    if (std::string broken = internal::halfedge_structure_defect(pmesh); !broken.empty()) {
+      r.status = Status::invalid_mesh;
+      r.message = "ensure_valid_mesh: the mesh's halfedge structure is broken: " + broken;
+      return r;
+    }
     const std::vector<face_descriptor> fs(faces(pmesh).begin(), faces(pmesh).end());
     auto scans = internal::chunked<Face_scan>(fs.size(), [&](std::size_t b, std::size_t e, Face_scan& s) {
       for (std::size_t i = b; i < e && s.triangles; ++i) {

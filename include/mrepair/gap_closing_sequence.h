@@ -355,7 +355,6 @@ public:
       closer_.refuse(Status::invalid_parameter, "tolerance must be finite and >= 0, gap_lambda in [0,1]");
       return;
     }
-    if (internal::get_or(np, inp::gap_fingerprint_input, false)) fingerprint_input();
     // the region: a vertex is in it when selected, or when one of its faces is
     // (the boundary vertices left out go into the region fingerprint: 0 when none is)
     auto note = [this](vertex_descriptor v, bool in) {
@@ -381,6 +380,9 @@ public:
       closer_.start(max_distance, lambda, relative, snap, internal::Gap_whole_mesh());
     }
     file_.tolerance = closer_.max_distance();
+    // after start(), which refuses a broken halfedge structure: the hash walks every face
+    if (closer_.status() == Status::ok && internal::get_or(np, inp::gap_fingerprint_input, false))
+      fingerprint_input();
   }
 
   Gap_closing_sequence(const Gap_closing_sequence&) = delete;

@@ -3,6 +3,7 @@
 #define MREPAIR_INSPECT_H
 
 #include <mrepair/inspection_report.h>
+#include <mrepair/internal/bounded_walks.h>
 #include <mrepair/internal/inspect/analysis.h>
 #include <mrepair/internal/inspect/finish.h>
 #include <mrepair/internal/inspect/mesh_arrays.h>
@@ -158,7 +159,8 @@ Inspection_report inspect_polygon_soup(const PointRange& points, const PolygonRa
 ///   - `count_self_intersections` (bool, true): count self-intersecting pairs
 ///     (needs a triangle mesh with finite coordinates, else not counted)
 /// \pre `CGAL::is_valid_polygon_mesh(pmesh)`
-/// \return `Inspection_report`; `status` is `ok`, `empty_input`, `non_finite_input` or `invalid_parameter`.
+/// \return `Inspection_report`; `status` is `ok`, `empty_input`, `non_finite_input`,
+///   `invalid_parameter`, or `invalid_mesh` (a border cycle that does not close).
 template <typename PolygonMesh,
           typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Inspection_report inspect(const PolygonMesh& pmesh,
@@ -174,13 +176,22 @@ Inspection_report inspect(const PolygonMesh& pmesh,
   auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                               get_const_property_map(CGAL::vertex_point, pmesh));
   internal::Visitor_handle<NamedParameters> visitor(np);
+  // every count below walks faces and vertices: a broken structure is
+  // reported, not walked (bounded_walks.h)
+  if (std::string broken = internal::halfedge_structure_defect(pmesh); !broken.empty()) {
+    r.status = Status::invalid_mesh;
+    r.message = "inspect: the mesh's halfedge structure is broken: " + broken;
+    return r;
+  }
   internal::Surface_arrays a;
   std::vector<std::size_t> loops;
   {
     internal::Phase_scope<decltype(visitor)> phase(visitor, "inspect: topology");
-    if (!internal::build_mesh_arrays(pmesh, vpm, a, loops)) {
-      r.status = Status::invalid_parameter;
-      r.message = "mesh too large (more than 2^32 - 1 elements)";
+    const Status built = internal::build_mesh_arrays(pmesh, vpm, a, loops);
+    if (built != Status::ok) {
+      r.status = built;
+      r.message = built == Status::invalid_mesh ? internal::walk_bound_message("inspect: the border cycles")
+                                                : "mesh too large (more than 2^32 - 1 elements)";
       return r;
     }
   }

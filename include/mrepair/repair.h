@@ -23,6 +23,7 @@
 #include <mrepair/triangulate_polygons.h>
 #include <mrepair/visitors.h>
 
+#include <CGAL/Polygon_mesh_processing/polygon_mesh_to_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
@@ -241,16 +242,18 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   for (const Point& p : points)
     finite = finite && std::isfinite(CGAL::to_double(p.x())) &&
              std::isfinite(CGAL::to_double(p.y())) && std::isfinite(CGAL::to_double(p.z()));
-  const bool direct = finite && is_polygon_soup_a_polygon_mesh(polygons, points.size());
+  bool direct = finite && is_polygon_soup_a_polygon_mesh(polygons, points.size());
   result.soup_needed = !direct;
   Soup_repair_result s;
-  if (direct) {
-    CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, out);
-  } else {
+  auto soup_to_manifold = [&](auto& soup_points, auto& soup_polygons) {
     internal::Phase_scope<Handle> phase(visitor, "soup_to_manifold");
-    s = polygon_soup_to_manifold_mesh(points, polygons, out,
+    s = polygon_soup_to_manifold_mesh(soup_points, soup_polygons, out,
                                       MP::merge_epsilon(merge).visitor(std::ref(forward)));
-  }
+  };
+  if (direct)
+    CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, out);
+  else
+    soup_to_manifold(points, polygons);
   double soup_seconds = stage_clock.seconds();
 #ifdef CGAL_LINKED_WITH_TBB
   if (beside) {
@@ -259,6 +262,27 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   }
 #endif
   stage_clock.restart();
+  // freed, not only emptied: clear() keeps the capacity (36 MB of a 1M-face scan)
+  internal::free_memory(points, polygons);
+  Triangulation_result triangulation;
+  if (direct) {
+    triangulation = triangulate_polygons(out);
+    if (triangulation.status != Status::ok) {
+      // a polygon mesh whose polygons cannot all be cut without doubling an
+      // edge (two quads on the same four vertices): the soup stage
+      // triangulates and stitches it instead
+      std::vector<typename boost::property_traits<
+          typename boost::property_map<PolygonMesh, CGAL::vertex_point_t>::type>::value_type>
+          mesh_points;
+      std::vector<std::vector<std::size_t>> mesh_polygons;
+      CGAL::Polygon_mesh_processing::polygon_mesh_to_polygon_soup(out, mesh_points, mesh_polygons);
+      CGAL::clear(out);
+      direct = false;
+      result.soup_needed = true;
+      triangulation = Triangulation_result();
+      soup_to_manifold(mesh_points, mesh_polygons);
+    }
+  }
   if (direct) {
     report.section("soup_to_manifold").add("needed", false);
   } else {
@@ -272,18 +296,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
     faces_in = s.faces_in;  // the soup stage's count (triangles of distinct corners) rules
     if (!succeeded(s.status)) return fail("soup_to_manifold", s.status, s.message);
   }
-  // freed, not only emptied: clear() keeps the capacity (36 MB of a 1M-face scan)
-  internal::free_memory(points, polygons);
-  {
-    const Triangulation_result t = triangulate_polygons(out);
-    if (t.polygons > 0) t.to_report(report.section("triangulation"));
-    if (t.status != Status::ok) {
-      result.status = t.status;
-      result.failed_stage = "triangulation";
-      result.message = t.message;
-      return result;
-    }
-  }
+  if (triangulation.polygons > 0) triangulation.to_report(report.section("triangulation"));
   soup_seconds += stage_clock.seconds();
   report.section("soup_to_manifold").add("seconds", soup_seconds);
   stage_done("soup_to_manifold");

@@ -8,13 +8,17 @@
 
 #include <mrepair/report.h>
 #include <mrepair/status.h>
+#include <mrepair/internal/bounded_walks.h>
+#include <mrepair/internal/polygon_triangulation.h>
 #include <mrepair/internal/utility.h>
 
-#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace mrepair {
 
@@ -27,7 +31,7 @@ struct Triangulation_result
   std::size_t polygons = 0;    ///< faces with more than three sides
   std::size_t faces_before = 0;
   std::size_t faces_after = 0;
-  bool complete = true;        ///< CGAL triangulated every polygon
+  bool complete = true;        ///< every polygon was triangulated
 
   /// writes the counters (the commands add this section only when `polygons > 0`).
   void to_report(Report& r) const
@@ -40,25 +44,73 @@ struct Triangulation_result
 };
 
 /// \ingroup mrepair_core
-/// triangulates the faces of `pmesh` with more than three sides
-/// (`CGAL::Polygon_mesh_processing::triangulate_faces`); a triangle mesh is left untouched.
+/// triangulates the faces of `pmesh` with more than three sides by ear
+/// clipping, one `CGAL::Euler::split_face` per cut (see
+/// internal/polygon_triangulation.h: CGAL 5.5's `triangulate_faces` left an
+/// invalid structure on a non-planar pentagon); a triangle mesh is left untouched.
+/// A cut never joins a vertex to itself nor doubles an existing edge: a face
+/// that cannot be finished that way keeps its last polygon (status
+/// `invalid_mesh`, `complete` false), and the mesh stays valid either way.
 /// \tparam PolygonMesh model of `MutableFaceGraph`
-/// \return `Triangulation_result`; status `invalid_mesh` when CGAL could not
-///   triangulate a face (the mesh stays valid, with that face as it was)
+/// \return `Triangulation_result`; status `invalid_mesh` when the mesh's
+///   halfedge structure is broken (nothing is changed) or a face could not be
+///   triangulated
 template <typename PolygonMesh>
 Triangulation_result triangulate_polygons(PolygonMesh& pmesh)
 {
+  using GT = boost::graph_traits<PolygonMesh>;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
   Triangulation_result t;
-  for (auto f : faces(pmesh))
-    if (CGAL::halfedges_around_face(halfedge(f, pmesh), pmesh).size() != 3) ++t.polygons;
   t.faces_before = t.faces_after = internal::face_count(pmesh);
-  if (t.polygons == 0) return t;
-  t.complete = CGAL::Polygon_mesh_processing::triangulate_faces(pmesh);
-  t.faces_after = internal::face_count(pmesh);
-  if (!t.complete || !CGAL::is_triangle_mesh(pmesh)) {
+  if (std::string why = internal::halfedge_structure_defect(pmesh); !why.empty()) {
     t.status = Status::invalid_mesh;
-    t.message = "some of the " + std::to_string(t.polygons) +
-                " polygons with more than three sides could not be triangulated";
+    t.complete = false;
+    t.message = "triangulate_polygons: the mesh's halfedge structure is broken: " + why;
+    return t;
+  }
+  std::vector<face_descriptor> polygons;
+  for (face_descriptor f : faces(pmesh))
+    if (next(next(next(halfedge(f, pmesh), pmesh), pmesh), pmesh) != halfedge(f, pmesh)) polygons.push_back(f);
+  t.polygons = polygons.size();
+  if (polygons.empty()) return t;
+  const auto vpm = get(CGAL::vertex_point, pmesh);
+  std::vector<halfedge_descriptor> in;  // per corner: the halfedge of the face left that ends there
+  std::vector<vertex_descriptor> corner_vertex;
+  std::vector<internal::Vec3> corner_point;
+  std::size_t unfinished = 0;
+  for (face_descriptor f : polygons) {
+    in.clear();
+    corner_vertex.clear();
+    corner_point.clear();
+    for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, pmesh), pmesh)) {
+      in.push_back(h);
+      corner_vertex.push_back(target(h, pmesh));
+      corner_point.push_back(internal::to_vec3(get(vpm, target(h, pmesh))));
+    }
+    const std::size_t cuts = in.size() - 3;
+    std::size_t made = 0;
+    const bool done = internal::clip_ears(
+        corner_point, corner_vertex,
+        [&](std::size_t a, std::size_t c) {
+          return corner_vertex[a] != corner_vertex[c] &&
+                 !halfedge(corner_vertex[a], corner_vertex[c], pmesh).second;
+        },
+        [&](std::size_t a, std::size_t, std::size_t c) {
+          if (made++ == cuts) return;  // the last triangle is the face left
+          // the new halfedge c -> a follows b -> c (the triangle); a -> c is the face left
+          const halfedge_descriptor ca = CGAL::Euler::split_face(in[c], in[a], pmesh);
+          in[c] = opposite(ca, pmesh);
+        });
+    if (!done) ++unfinished;
+  }
+  t.faces_after = internal::face_count(pmesh);
+  if (unfinished > 0) {
+    t.complete = false;
+    t.status = Status::invalid_mesh;
+    t.message = std::to_string(unfinished) + " of the " + std::to_string(t.polygons) +
+                " polygons with more than three sides could not be triangulated without doubling an edge";
   }
   return t;
 }

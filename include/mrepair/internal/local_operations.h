@@ -20,14 +20,18 @@
 #include <mrepair/geometric_statistics.h>
 #include <mrepair/internal/utility.h>
 
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
+#include <CGAL/exceptions.h>
+#include <CGAL/version.h>
 
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <iterator>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -65,6 +69,49 @@ bool is_border_vertex(typename boost::graph_traits<PM>::vertex_descriptor v, con
   if (halfedge(v, pm) == boost::graph_traits<PM>::null_halfedge()) return false;
   for (auto h : CGAL::halfedges_around_target(halfedge(v, pm), pm))
     if (is_border(h, pm)) return true;
+  return false;
+}
+
+/// CGAL's `triangulate_hole` (Liepa's weight; `use_delaunay` restricts the
+/// search to a 3D Delaunay triangulation) of the border loop of `h`,
+/// checked: the patch must be the loop's n - 2 triangles. On degenerate loops
+/// (coincident corners, a pillow of two polygons) CGAL 5.5 reported a
+/// triangle and a quadrilateral for a loop of five (its debug assertion
+/// `Q.front() == Q.back()` fails), and the quadrilateral broke every step
+/// after. Such a patch is removed again, the loop is a border once more and
+/// `added` is empty: an aborted fill.
+template <typename PM, typename VPM>
+bool triangulate_hole_checked(PM& pm, typename boost::graph_traits<PM>::halfedge_descriptor h, const VPM& vpm,
+                              bool use_delaunay,
+                              std::vector<typename boost::graph_traits<PM>::face_descriptor>& added)
+{
+  using halfedge_descriptor = typename boost::graph_traits<PM>::halfedge_descriptor;
+  const std::size_t n = CGAL::halfedges_around_face(h, pm).size();
+  const std::size_t first = added.size();
+  bool whole = true;
+  try {  // with CGAL's assertions on (debug builds) the same loops throw
+#if CGAL_VERSION_NR >= 1060000000
+    CGAL::Polygon_mesh_processing::triangulate_hole(
+        pm, h,
+        CGAL::parameters::face_output_iterator(std::back_inserter(added))
+            .vertex_point_map(vpm)
+            .use_delaunay_triangulation(use_delaunay));
+#else
+    CGAL::Polygon_mesh_processing::triangulate_hole(
+        pm, h, std::back_inserter(added),
+        CGAL::parameters::vertex_point_map(vpm).use_delaunay_triangulation(use_delaunay));
+#endif
+  } catch (const CGAL::Failure_exception&) {
+    whole = false;
+  }
+  whole = whole && added.size() - first + 2 == n;
+  for (std::size_t i = first; i < added.size() && whole; ++i) {
+    const halfedge_descriptor g = halfedge(added[i], pm);
+    whole = next(next(next(g, pm), pm), pm) == g;
+  }
+  if (whole) return true;
+  for (std::size_t i = first; i < added.size(); ++i) CGAL::Euler::remove_face(halfedge(added[i], pm), pm);
+  added.resize(first);
   return false;
 }
 
@@ -281,6 +328,8 @@ public:
     std::vector<face_descriptor> ring;  // faces around a vertex, null = border
     std::vector<int> run_of;            // run index of each ring slot, -1 = gap
     std::vector<std::size_t> run_size;
+    // Bounded: a vertex goes back on `work` only when a fan of its ring was
+    // marked just then, and each face is marked (and pushed) once.
     while (!work.empty()) {
       const vertex_descriptor v = work.back();
       work.pop_back();
@@ -306,8 +355,9 @@ public:
       // a pinch: keep the largest fan, remove the others
       ++counts.pinches_resolved;
       const std::size_t best = std::size_t(std::max_element(run_size.begin(), run_size.end()) - run_size.begin());
+      // (a face met twice in one ring is marked and removed once)
       for (std::size_t i = 0; i < n; ++i)
-        if (run_of[i] >= 0 && std::size_t(run_of[i]) != best) {
+        if (run_of[i] >= 0 && std::size_t(run_of[i]) != best && get(fmark_, ring[i]) != 2) {
           put(fmark_, ring[i], char(2));
           to_remove.push_back(ring[i]);
           for (vertex_descriptor w : CGAL::vertices_around_face(halfedge(ring[i], pm_), pm_))
@@ -365,6 +415,7 @@ public:
       return false;
     };
     bool anywhere = false;  // a face on its own only when none goes next to the border
+    // each pass adds a face or sets `anywhere`, two passes without one return
     while (!todo.empty()) {
       later.clear();
       for (const auto& t : todo) {

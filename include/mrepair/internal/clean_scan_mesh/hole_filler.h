@@ -186,10 +186,7 @@ public:
   bool triangulate(halfedge_descriptor h, std::size_t n, std::vector<face_descriptor>& patch)
   {
     patch.reserve(2 * n);
-    CGAL::Polygon_mesh_processing::triangulate_hole(
-        pm_, h, std::back_inserter(patch),
-        CGAL::parameters::vertex_point_map(vpm_).use_delaunay_triangulation(n > delaunay_above_));
-    return !patch.empty();
+    return triangulate_hole_checked(pm_, h, vpm_, n > delaunay_above_, patch);
   }
 
   // After the refinement: fairing, then the crossing test. A refined or

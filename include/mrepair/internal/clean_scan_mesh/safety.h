@@ -42,6 +42,9 @@ std::size_t label_components_in_parallel(const PM& pm, const VPM& vpm, FaceId& i
   const std::size_t nf = pm.num_faces();  // index range, removed faces included
   std::unique_ptr<std::atomic<Index>[]> parent(new std::atomic<Index>[nf]);
   parallel_for_index(nf, 16384, [&](std::size_t f) { parent[f].store(Index(f), std::memory_order_relaxed); });
+  // a parent is never larger than its child (links go under the smaller
+  // root, halving skips to a grandparent): every chain ends within nf steps,
+  // and a compare-and-swap below fails only when a root got linked meanwhile
   auto find = [&](Index x) {
     for (;;) {
       Index p = parent[x].load(std::memory_order_relaxed);

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace mrepair {
@@ -35,10 +36,13 @@ public:
   void init(const P& origin, double cell, std::size_t expected = 0)
   {
     origin_ = origin;
-    cell_ = cell;
-    inv_ = 1.0 / cell;
+    // a cell of 0, NaN or infinity would make every index the same or undefined
+    cell_ = cell > 0 && std::isfinite(cell) ? cell : 1.0;
+    inv_ = 1.0 / cell_;
+    if (!std::isfinite(inv_)) inv_ = std::numeric_limits<double>::max();
     items_.clear();
     next_.clear();
+    long_items_.clear();
     std::size_t cap = 64;
     while (cap < 2 * expected) cap <<= 1;
     reset_table(cap);
@@ -47,12 +51,18 @@ public:
   std::size_t size() const { return items_.size(); }
 
   // registers `key` in every cell the segment [a,b] may touch: the segment is
-  // cut in pieces no longer than a cell and each piece's box is covered.
+  // cut in pieces no longer than a cell and each piece's box is covered. A
+  // segment longer than max_pieces cells (coordinates from 1e-9 to 1e9 in
+  // one small soup: billions of cells) goes to a list every query reads.
   void insert(std::uint64_t key, const P& a, const P& b)
   {
-    double len = std::sqrt(sq(b[0] - a[0]) + sq(b[1] - a[1]) + sq(b[2] - a[2]));
-    std::size_t n = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(len * inv_)));
-    n = std::min<std::size_t>(n, 1u << 16);  // absurdly long edges: cap the work
+    const double len = std::sqrt(sq(b[0] - a[0]) + sq(b[1] - a[1]) + sq(b[2] - a[2]));
+    const double pieces = std::ceil(len * inv_);
+    if (!(pieces <= double(max_pieces))) {  // NaN too
+      long_items_.push_back(Item{key, a, b});
+      return;
+    }
+    const std::size_t n = std::max<std::size_t>(1, static_cast<std::size_t>(pieces));
     for (std::size_t i = 0; i < n; ++i) {
       double t0 = double(i) / n, t1 = double(i + 1) / n;
       std::array<long, 3> lo, hi;
@@ -92,15 +102,16 @@ public:
   void query_nearest_first(const P& p, double r, F&& f, Bound&& bound) const
   {
     std::array<long, 3> lo, hi, at;
-    std::size_t count = 1;
+    double count = 1;  // in double: far cells would overflow a product of integers
     for (int d = 0; d < 3; ++d) {
       lo[d] = index(p[d] - r, d);
       hi[d] = index(p[d] + r, d);
       at[d] = index(p[d], d);
-      count *= std::size_t(hi[d] - lo[d] + 1);
+      count *= double(hi[d]) - double(lo[d]) + 1;
     }
     constexpr long max_span = 4;
-    if (count > std::size_t(max_span * max_span * max_span)) {  // a radius of several cells: no pruning
+    if (!(count <= double(max_span * max_span * max_span)) || !long_items_.empty()) {
+      // a radius of several cells (or segments kept out of the cells): no pruning
       query(p, r, f);
       return;
     }
@@ -132,14 +143,33 @@ public:
   }
 
   // calls f(item) for the items registered in cells meeting the box [a,b] (any
-  // two corners) grown by `r` (with repeats).
+  // two corners) grown by `r` (with repeats). A box of more cells than there
+  // are items reads the items instead, those whose box meets it: the same
+  // items within r of the box, and a bounded cost whatever r and the cell.
   template <class F>
   void query_box(const P& a, const P& b, double r, F&& f) const
   {
     std::array<long, 3> lo, hi;
+    P box_lo, box_hi;
+    double cells = 1;
     for (int d = 0; d < 3; ++d) {
-      lo[d] = index(std::min(a[d], b[d]) - r, d);
-      hi[d] = index(std::max(a[d], b[d]) + r, d);
+      box_lo[d] = std::min(a[d], b[d]) - r;
+      box_hi[d] = std::max(a[d], b[d]) + r;
+      lo[d] = index(box_lo[d], d);
+      hi[d] = index(box_hi[d], d);
+      cells *= double(hi[d]) - double(lo[d]) + 1;
+    }
+    const auto meets = [&](const Item& it) {
+      for (int d = 0; d < 3; ++d)
+        if (std::max(it.a[d], it.b[d]) < box_lo[d] || std::min(it.a[d], it.b[d]) > box_hi[d]) return false;
+      return true;
+    };
+    for (const Item& it : long_items_)
+      if (meets(it)) f(it);
+    if (!(cells <= double(items_.size()) + 64)) {  // NaN (a NaN radius) too
+      for (const Item& it : items_)
+        if (meets(it)) f(it);
+      return;
     }
     for (long x = lo[0]; x <= hi[0]; ++x)
       for (long y = lo[1]; y <= hi[1]; ++y)
@@ -149,6 +179,7 @@ public:
 
 private:
   static constexpr std::uint32_t npos = 0xffffffffu;
+  static constexpr double max_pieces = 1024;  // cells along one registered segment
   static constexpr std::uint64_t empty = ~std::uint64_t(0);  // pack() never yields it (63 bits)
   struct Slot
   {
@@ -157,7 +188,15 @@ private:
   };
 
   static double sq(double x) { return x * x; }
-  long index(double x, int d) const { return static_cast<long>(std::floor((x - origin_[d]) * inv_)); }
+  // clamped before the cast (a double beyond long's range is undefined
+  // behaviour); pack() keeps 21 bits anyway, so far cells share slots
+  long index(double x, int d) const
+  {
+    const double c = std::floor((x - origin_[d]) * inv_);
+    constexpr double limit = 4.6e18;  // below 2^62
+    if (!(c > -limit)) return c < 0 ? -long(4.6e18) : 0;  // NaN: cell 0
+    return c < limit ? static_cast<long>(c) : long(4.6e18);
+  }
   static std::uint64_t pack(long x, long y, long z)
   {
     const std::uint64_t m = (1u << 21) - 1;
@@ -216,6 +255,7 @@ private:
   int shift_ = 64;
   std::vector<Item> items_;
   std::vector<std::uint32_t> next_;  // chain of items in a cell, newest first
+  std::vector<Item> long_items_;     // segments too long for cells: every query reads them
 };
 
 } // namespace internal

@@ -3,6 +3,7 @@
 #define MREPAIR_INTERNAL_CLOSE_GAPS_GAP_CLOSER_H
 
 #include <mrepair/gap_closing_result.h>
+#include <mrepair/internal/bounded_walks.h>
 #include <mrepair/internal/close_gaps/boundary_grid.h>
 #include <mrepair/internal/utility.h>
 #include <mrepair/status.h>
@@ -82,19 +83,28 @@ std::size_t collect_border_halfedges(const Mesh& m,
 
 // calls f(h) once per border cycle of `m`, with its first halfedge in
 // halfedge order (`border`: all border halfedges, from collect_border_halfedges).
+// A walk that does not come back to its start within the halfedge count (a
+// broken next(): issue 36's pentagon) stops there; returns false then.
 template <class Mesh, class F>
-void for_each_border_cycle(const Mesh& m,
+bool for_each_border_cycle(const Mesh& m,
                            const std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor>& border,
                            const F& f)
 {
   using halfedge_descriptor = typename boost::graph_traits<Mesh>::halfedge_descriptor;
+  const std::size_t limit = walk_limit(m);
+  bool closed = true;
   auto walk = [&](halfedge_descriptor h, auto&& visited, auto&& mark) {
     if (visited(h)) return;
     halfedge_descriptor g = h;
+    Walk_bound bound(limit);
     do {
       mark(g);
       g = next(g, m);
-    } while (g != h);
+    } while (g != h && !visited(g) && bound.step());
+    if (g != h) {  // came back elsewhere, or never: not a cycle
+      closed = false;
+      return;
+    }
     f(h);
   };
   if constexpr (Is_surface_mesh<Mesh>::value) {
@@ -108,6 +118,7 @@ void for_each_border_cycle(const Mesh& m,
     for (halfedge_descriptor h : border)
       walk(h, [&](halfedge_descriptor g) { return get(seen, g); }, [&](halfedge_descriptor g) { put(seen, g, true); });
   }
+  return closed;
 }
 
 // border halfedge count and border cycle count of a halfedge graph.
@@ -208,14 +219,16 @@ public:
     // is a triangle mesh exactly when its inner halfedges are 3 per face.
     std::vector<halfedge_descriptor> border;
     const std::size_t nh = collect_border_halfedges(tm, border);
-#ifndef NDEBUG
-    const bool valid = CGAL::is_valid_polygon_mesh(tm);  // O(n) and slow: debug builds only
-#else
-    const bool valid = true;
-#endif
+    // the local rules that make every walk end (bounded_walks.h), in
+    // O(halfedges) in every build; CGAL::is_valid_polygon_mesh is slow
+    const std::string broken = halfedge_structure_defect(tm);
+    if (!broken.empty()) {
+      refuse(Status::invalid_mesh, "the input's halfedge structure is broken: " + broken);
+      return;
+    }
     // face_count: BGL num_faces() counts the removed faces a Surface_mesh keeps
     // after stepping back, which refused every closing of a stepped mesh
-    if (!valid || nh - border.size() != 3 * face_count(tm)) {
+    if (nh - border.size() != 3 * face_count(tm)) {
       refuse(Status::invalid_mesh, "the input is not a valid triangle mesh");
       return;
     }
@@ -240,7 +253,11 @@ public:
     const std::size_t nb = vd_.size();
     input_boundary_ = nb;
     std::size_t pinched = 0;
-    boundary_stats(boundary_edges_before_, boundary_loops_before_, pinched);
+    if (!boundary_stats(boundary_edges_before_, boundary_loops_before_, pinched)) {
+      refuse(Status::invalid_mesh, walk_bound_message("close_gaps: the border walk of the input"));
+      return;
+    }
+    max_ops_ = 4 * walk_limit(tm);
 
     // region
     selected_.assign(vd_.size(), 1);
@@ -304,15 +321,31 @@ public:
       if (ops_[pos_].level > limit) return false;
       return redo();
     }
+    // each entry is popped once, and only a stale pair is pushed again, whose
+    // recomputed pair is not stale (same mesh): at most 2x the queue in pops;
+    // the bound is twice that
+    Walk_bound pops(4 * queue_.size() + 4);
     while (!queue_.empty()) {
+      if (!pops.step()) return stop_at_bound("close_gaps: the pair queue");
       Entry top = queue_.top();
       if (top.ver != ver_[top.v] || pair_[top.v].kind == none || !alive_[top.v]) {
         queue_.pop();
         continue;
       }
       if (top.d > limit) return false;
+      // a vertex-vertex contraction removes an input boundary vertex, a
+      // vertex-edge one adds a face: a closing never comes near 4x the
+      // input's halfedges of them
+      if (ops_.size() >= max_ops_) {
+        broken_ = true;
+        message_ = "close_gaps: stopped after " + std::to_string(ops_.size()) +
+                   " contractions (4x the input's halfedges): they do not converge;" +
+                   " the mesh is valid at the stop";
+        return false;
+      }
       queue_.pop();
       Outcome o = contract(top.v, top.d);
+      if (broken_) return false;  // a face walk hit its bound (remove_face_keep_vertices)
       if (o != done && o != stale) rejected_[top.v] = 1;
       switch (o) {
         case done: return true;
@@ -345,7 +378,10 @@ public:
     r.rejected_displacement = rejected_displacement_;
     r.boundary_edges_before = boundary_edges_before_;
     r.boundary_loops_before = boundary_loops_before_;
-    boundary_stats(r.boundary_edges_after, r.boundary_loops_after, r.pinched_vertices);
+    if (!boundary_stats(r.boundary_edges_after, r.boundary_loops_after, r.pinched_vertices)) {
+      r.status = Status::invalid_mesh;
+      r.message = walk_bound_message("close_gaps: the border walk of the result");
+    }
     for (Id i = 0; i < orig_.size(); ++i)
       if (has_orig_[i] && alive_[i])
         r.max_displacement = std::max(r.max_displacement, std::sqrt(sqdist(pos(i), p3(orig_[i]))));
@@ -470,7 +506,8 @@ private:
   // border halfedges, border cycles and pinched vertices. Every border
   // halfedge joins two vertices of the input boundary (contractions only glue
   // or split boundary edges), so a scan of those vertices (the first ids) suffices.
-  void boundary_stats(std::size_t& edges, std::size_t& loops, std::size_t& pinched) const
+  // False when a cycle walk hit its bound (a broken next()).
+  bool boundary_stats(std::size_t& edges, std::size_t& loops, std::size_t& pinched) const
   {
     edges = loops = pinched = 0;
     std::vector<halfedge_descriptor> border;
@@ -495,19 +532,27 @@ private:
     std::vector<std::uint64_t> keys(border.size());
     for (std::size_t i = 0; i < border.size(); ++i) keys[i] = hkey(border[i]);
     std::sort(keys.begin(), keys.end());
-    std::vector<char> seen(keys.size(), 0);
+    // the last slot takes a halfedge whose key is not listed (a broken next()
+    // leaving the border): written, never read
+    std::vector<char> seen(keys.size() + 1, 0);
     auto mark = [&](halfedge_descriptor h) -> char& {
-      return seen[std::lower_bound(keys.begin(), keys.end(), hkey(h)) - keys.begin()];
+      const std::uint64_t k = hkey(h);
+      const auto i = static_cast<std::size_t>(std::lower_bound(keys.begin(), keys.end(), k) - keys.begin());
+      return seen[i < keys.size() && keys[i] == k ? i : keys.size()];
     };
+    const std::size_t limit = walk_limit(tm_);
     for (halfedge_descriptor h : border) {
       if (mark(h)) continue;
       ++loops;
       halfedge_descriptor g = h;
+      Walk_bound bound(limit);
       do {
         mark(g) = 1;
         g = next(g, tm_);
-      } while (g != h);
+      } while (g != h && bound.step());
+      if (bound.exceeded()) return false;
     }
+    return true;
   }
 
   // ---- pairing -------------------------------------------------------------
@@ -906,11 +951,13 @@ private:
   // ---- face edits (forward, undo and redo all go through here) -------------
   // Euler::remove_face deletes vertices left without faces; re-create them at
   // once (same index on Surface_mesh: the free list is LIFO) so ids stay valid.
-  void remove_face_keep_vertices(halfedge_descriptor h)
+  // False (nothing removed) when the face is not a triangle after all.
+  bool remove_face_keep_vertices(halfedge_descriptor h)
   {
     std::array<std::pair<Id, Point>, 3> lone;
     int n = 0;
     halfedge_descriptor g = h;
+    Walk_bound bound(2);  // a triangle: three steps, which also keeps `lone` in bounds
     do {
       halfedge_descriptor ng = next(g, tm_);
       if (is_border(opposite(g, tm_), tm_) && is_border(opposite(ng, tm_), tm_) &&
@@ -919,7 +966,8 @@ private:
         lone[n++] = {Id(get(idmap_, t) - 1), get(vpm_, t)};
       }
       g = ng;
-    } while (g != h);
+    } while (g != h && bound.step());
+    if (bound.exceeded()) return stop_at_bound("close_gaps: the walk around a removed face");
     CGAL::Euler::remove_face(h, tm_);
     for (int i = n - 1; i >= 0; --i) {
       vertex_descriptor v = add_vertex(tm_);
@@ -927,6 +975,7 @@ private:
       put(idmap_, v, lone[i].first + 1);
       vd_[lone[i].first] = v;
     }
+    return true;
   }
   bool add_tri(const Tri& t)
   {
@@ -937,8 +986,7 @@ private:
   {
     auto h = find_halfedge(t[0], t[1]);
     if (!h.second || is_border(h.first, tm_) || target(next(h.first, tm_), tm_) != vd_[t[2]]) return false;
-    remove_face_keep_vertices(h.first);
-    return true;
+    return remove_face_keep_vertices(h.first);
   }
 
   // removes `rem`, adds `add`; re-creates vertex `readd` first (at `readd_pos`) and
@@ -1003,13 +1051,24 @@ private:
     return true;
   }
 
+  // a walk or queue of `step` hit its bound (bounded_walks.h): no further
+  // step, and the result says invalid_mesh; the mesh stays valid (run_edit
+  // rolls back an edit the bound stopped)
+  bool stop_at_bound(const char* step)
+  {
+    broken_ = true;
+    message_ = walk_bound_message(step);
+    return false;
+  }
+
   // ---- state ---------------------------------------------------------------
   TriangleMesh& tm_;
   VertexPointMap vpm_;
   Id_map idmap_;
   Status status_ = Status::ok;
   std::string message_;
-  bool broken_ = false;
+  bool broken_ = false;            // an undo failed, or a bound was hit: no further step
+  std::size_t max_ops_ = 0;        // contraction cap (see step())
   double max_dist_ = 0, lambda_ = 0.5, snap_ = 0;
 
   std::vector<vertex_descriptor> vd_;  // stable id -> current descriptor

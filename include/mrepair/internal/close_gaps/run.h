@@ -7,6 +7,7 @@
 // splitting the pinched vertices left.
 
 #include <mrepair/gap_closing_result.h>
+#include <mrepair/internal/bounded_walks.h>
 #include <mrepair/internal/close_gaps/gap_closer.h>
 #include <mrepair/internal/local_operations.h>
 #include <mrepair/internal/patch_guard.h>
@@ -97,9 +98,9 @@ void bridge_narrow_loops(TriangleMesh& tm, const VertexPointMap& vpm, double tol
     std::vector<halfedge_descriptor> border;
     collect_border_halfedges(tm, border);
     std::vector<Vec3> c;
-    for_each_border_cycle(tm, border, [&](halfedge_descriptor h) {
+    const bool closed = for_each_border_cycle(tm, border, [&](halfedge_descriptor h) {
       c.clear();
-      halfedge_descriptor g = h;
+      halfedge_descriptor g = h;  // a cycle: for_each_border_cycle walked it back to h
       do {
         c.push_back(point(vpm, target(g, tm)));
         g = next(g, tm);
@@ -116,6 +117,11 @@ void bridge_narrow_loops(TriangleMesh& tm, const VertexPointMap& vpm, double tol
       // |area| is twice the vector area
       if (perimeter > 0 && norm(area) / perimeter <= 0.5 * tolerance) loops.push_back(h);
     });
+    if (!closed) {  // a border walk hit its bound: no bridge on a broken border
+      r.status = Status::invalid_mesh;
+      r.message = walk_bound_message("close_gaps: the border walk of the bridging");
+      return;
+    }
   }
   Operations ops(tm, vpm);
   Patch_intersection_guard<TriangleMesh, VertexPointMap> guard(tm, vpm);
@@ -160,14 +166,7 @@ void bridge_narrow_loops(TriangleMesh& tm, const VertexPointMap& vpm, double tol
     const bool bridged = ops.insert_patch(h, [&](Operations& patch_ops, std::vector<vertex_descriptor>&,
                                                  std::vector<vertex_descriptor>&) {
       std::vector<face_descriptor> added;
-#if CGAL_VERSION_NR >= 1060000000
-      CGAL::Polygon_mesh_processing::triangulate_hole(
-          tm, h, CGAL::parameters::face_output_iterator(std::back_inserter(added)).vertex_point_map(vpm));
-#else
-      CGAL::Polygon_mesh_processing::triangulate_hole(tm, h, std::back_inserter(added),
-                                                      CGAL::parameters::vertex_point_map(vpm));
-#endif
-      if (added.empty()) return false;
+      if (!triangulate_hole_checked(tm, h, vpm, true, added)) return false;
       for (face_descriptor f : added) {
         const halfedge_descriptor fh = halfedge(f, tm);
         const Vec3 p = point(vpm, source(fh, tm)), q = point(vpm, target(fh, tm)),

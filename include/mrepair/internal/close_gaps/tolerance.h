@@ -174,10 +174,13 @@ Gap_tolerance_estimate estimate_tolerance(const TriangleMesh& tm, const VertexPo
     // growing radii: a seam partner is found in the first query; only a vertex
     // with long edges and nobody near pays for a query as wide as its longest
     // edge (on the 1M-face anchor soup one such query per vertex took 13 s)
-    for (double q = std::min(r, std::max(e.median_edge_length, r / 64));; q = std::min(r, 4 * q)) {
+    // (a radius of 0 never grows: at most 32 rounds, the last one at r)
+    double q = std::min(r, std::max(e.median_edge_length, r / 64));
+    for (int round = 0;; ++round, q = std::min(r, 4 * q)) {
+      if (round == 32) q = r;
       best = best_facing = std::numeric_limits<double>::infinity();
       grid.query(p[v], q, visit);
-      if (best <= q || q >= r) break;
+      if (best <= q || q >= r || round >= 32) break;
     }
     if (!(best < r)) return;
     if (!(best_facing <= best * (1 + 1e-9))) {

@@ -2,9 +2,11 @@
 #ifndef MREPAIR_INTERNAL_INSPECT_MESH_ARRAYS_H
 #define MREPAIR_INTERNAL_INSPECT_MESH_ARRAYS_H
 
+#include <mrepair/internal/bounded_walks.h>
 #include <mrepair/internal/inspect/parallel.h>
 #include <mrepair/internal/inspect/surface_arrays.h>
 #include <mrepair/internal/utility.h>
+#include <mrepair/status.h>
 
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
@@ -22,10 +24,11 @@ namespace internal {
 // non-border halfedges) and lists the length (number of border halfedges) of
 // every border cycle in `border_cycles`. Works through the graph's index maps
 // (initialised if needed: Polyhedron_3), remapped to compact indices so that
-// Surface_mesh garbage does not matter. Returns false when the mesh is too
-// large for 32-bit indices.
+// Surface_mesh garbage does not matter. Returns `Status::ok`,
+// `invalid_parameter` when the mesh is too large for 32-bit indices, or
+// `invalid_mesh` when a border walk hit its bound (a broken next()).
 template <typename PolygonMesh, typename VertexPointMap>
-bool build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arrays& a,
+Status build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arrays& a,
                        std::vector<std::size_t>& border_cycles)
 {
   using GT = boost::graph_traits<PolygonMesh>;
@@ -66,7 +69,7 @@ bool build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arrays
       vslots = (std::max)(vslots, static_cast<std::size_t>(get(vim, v)) + 1);
     }
   }
-  if (V.size() >= inspect_npos || vslots >= inspect_npos) return false;
+  if (V.size() >= inspect_npos || vslots >= inspect_npos) return Status::invalid_parameter;
   std::vector<Inspect_index> vid(vslots, inspect_npos);
   parallel_for_index(V.size(), 16384, [&](std::size_t i) { vid[get(vim, V[i])] = static_cast<Inspect_index>(i); });
   a.num_vertices = V.size();
@@ -89,7 +92,7 @@ bool build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arrays
     E.reserve(edges(pm).size());
     for (auto e : edges(pm)) E.push_back(halfedge(e, pm));
   }
-  if (hslots >= inspect_npos) return false;
+  if (hslots >= inspect_npos) return Status::invalid_parameter;
   std::vector<Inspect_index> eid(hslots, inspect_npos);
   const std::size_t ne = E.size();
   parallel_for_index(ne, 16384, [&](std::size_t e) {
@@ -118,7 +121,7 @@ bool build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arrays
   });
   std::size_t nc = 0;
   for (std::size_t f = 0; f < nf; ++f) nc += a.face_off[f];
-  if (nc >= inspect_npos) return false;
+  if (nc >= inspect_npos) return Status::invalid_parameter;
   exclusive_scan_in_place(a.face_off);
   a.face_off[nf] = static_cast<Inspect_index>(nc);
   a.corner_v.resize(nc);
@@ -164,14 +167,16 @@ bool build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arrays
     if (seen[get(him, h)]) continue;
     std::size_t len = 0;
     halfedge_descriptor g = h;
+    Walk_bound bound(hslots);
     do {
       seen[get(him, g)] = 1;
       ++len;
       g = next(g, pm);
-    } while (g != h && len <= hslots);
+    } while (g != h && bound.step() && static_cast<std::size_t>(get(him, g)) < hslots);
+    if (g != h) return Status::invalid_mesh;  // the walk left the halfedges or never came back
     border_cycles.push_back(len);
   }
-  return true;
+  return Status::ok;
 }
 
 } // namespace internal

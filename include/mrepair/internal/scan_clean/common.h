@@ -5,6 +5,7 @@
 #define MREPAIR_INTERNAL_SCAN_CLEAN_COMMON_H
 
 #include <mrepair/geometric_statistics.h>
+#include <mrepair/internal/bounded_walks.h>
 #include <mrepair/internal/utility.h>
 #include <mrepair/status.h>
 
@@ -42,6 +43,10 @@ Status check_input(const Mesh& m, const VPM& vpm, std::string& message)
   if (coordinates_too_large(m, vpm)) {
     message = coordinates_too_large_message;
     return Status::non_finite_input;
+  }
+  if (std::string broken = halfedge_structure_defect(m); !broken.empty()) {
+    message = "the mesh's halfedge structure is broken: " + broken;
+    return Status::invalid_mesh;
   }
   if (!CGAL::is_triangle_mesh(m)) {
     message = "the mesh is not triangulated";

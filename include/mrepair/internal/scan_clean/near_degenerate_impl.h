@@ -128,6 +128,8 @@ public:
     }
     const double total = static_cast<double>(c_.collapsible_edges_initial) + 1.0;
     std::size_t pops = 0, ops = 0;
+    // bounded: entries are pushed at the start and after an edit, and edits
+    // stop at max_operations (3 x edges + 100 unless given)
     while (!q_.empty()) {
       Entry en = q_.top();
       q_.pop();

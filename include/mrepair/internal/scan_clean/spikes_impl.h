@@ -263,7 +263,9 @@ public:
     };
     for (vertex_descriptor v : S) enter(v);
     std::size_t begin = 0;
-    for (std::size_t ring = 0; ring < s_.rings; ++ring) {
+    // stops once a ring adds no vertex: `relax_rings` is the caller's and may
+    // exceed any mesh (the rings after that one would add nothing either)
+    for (std::size_t ring = 0; ring < s_.rings && begin < W.size(); ++ring) {
       const std::size_t end = W.size();
       for (std::size_t i = begin; i < end; ++i)
         for (halfedge_descriptor h : CGAL::halfedges_around_target(W[i], tm_)) enter(source(h, tm_));

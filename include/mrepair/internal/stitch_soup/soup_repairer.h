@@ -26,6 +26,7 @@
 
 #include <mrepair/internal/inspect/parallel.h>
 #include <mrepair/internal/point_grid.h>
+#include <mrepair/internal/polygon_triangulation.h>
 #include <mrepair/internal/utility.h>
 #include <mrepair/stitch_soup_result.h>
 
@@ -286,59 +287,14 @@ public:
     T.push_back({a, b, c});
   }
 
-  // Ear clipping in the plane that drops the largest coordinate of the Newell
-  // normal; exact 2D orientation on the projected coordinates. A polygon with
-  // no ear left (self-overlapping, all collinear) is finished as a fan, whose
-  // collinear triangles are then dropped and counted.
+  // Ear clipping (polygon_triangulation.h); a polygon with no ear left is
+  // finished as a fan, whose collinear triangles are then dropped and counted.
   void triangulate(const std::vector<Idx>& poly, std::vector<std::array<Idx, 3>>& out)
   {
-    using K = CGAL::Epick;
-    const std::size_t m = poly.size();
-    Vec nrm{0, 0, 0};
-    for (std::size_t i = 0; i < m; ++i) {
-      const Vec& c = P[poly[i]];
-      const Vec& d = P[poly[(i + 1) % m]];
-      nrm[0] += (c[1] - d[1]) * (c[2] + d[2]);
-      nrm[1] += (c[2] - d[2]) * (c[0] + d[0]);
-      nrm[2] += (c[0] - d[0]) * (c[1] + d[1]);
-    }
-    int axis = 0;
-    for (int k = 1; k < 3; ++k)
-      if (std::abs(nrm[k]) > std::abs(nrm[axis])) axis = k;
-    int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    if (nrm[axis] < 0) std::swap(u, v);  // the polygon is counterclockwise in (u, v)
-    std::vector<K::Point_2> q(m);
-    for (std::size_t i = 0; i < m; ++i) q[i] = K::Point_2(P[poly[i]][u], P[poly[i]][v]);
-    auto orient = K().orientation_2_object();
-    std::vector<std::size_t> ring(m);
-    std::iota(ring.begin(), ring.end(), std::size_t(0));
-    while (ring.size() > 3) {
-      const std::size_t s = ring.size();
-      bool clipped = false;
-      for (std::size_t k = 0; k < s && !clipped; ++k) {
-        std::size_t a = ring[(k + s - 1) % s], b = ring[k], c = ring[(k + 1) % s];
-        if (orient(q[a], q[b], q[c]) != CGAL::LEFT_TURN) continue;
-        bool blocked = false;
-        for (std::size_t j = 0; j < s && !blocked; ++j) {
-          std::size_t x = ring[j];
-          if (x == a || x == b || x == c) continue;
-          if (poly[x] == poly[a] || poly[x] == poly[b] || poly[x] == poly[c]) continue;
-          if (orient(q[a], q[b], q[x]) != CGAL::RIGHT_TURN && orient(q[b], q[c], q[x]) != CGAL::RIGHT_TURN &&
-              orient(q[c], q[a], q[x]) != CGAL::RIGHT_TURN)
-            blocked = true;
-        }
-        if (blocked) continue;
-        out.push_back({poly[a], poly[b], poly[c]});
-        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
-        clipped = true;
-      }
-      if (!clipped) {
-        for (std::size_t k = 1; k + 1 < ring.size(); ++k)
-          out.push_back({poly[ring[0]], poly[ring[k]], poly[ring[k + 1]]});
-        return;
-      }
-    }
-    out.push_back({poly[ring[0]], poly[ring[1]], poly[ring[2]]});
+    std::vector<Vec3> corners(poly.size());
+    for (std::size_t i = 0; i < poly.size(); ++i) corners[i] = P[poly[i]];
+    clip_ears(corners, poly, [](std::size_t, std::size_t) { return true; },
+              [&](std::size_t a, std::size_t b, std::size_t c) { out.push_back({poly[a], poly[b], poly[c]}); });
   }
 
   // Same vertex set: keep the first face (and with keep_two_sided, the first of
