@@ -52,13 +52,14 @@ std::string soup_to_mesh(const std::vector<Point>& pts, const std::vector<Polygo
 // accounting that reconciles when the job ran to its end.
 constexpr std::size_t max_repair_polygons = 16;
 
-template <class Mesh>
-std::string repair_soup(std::vector<Point> pts, std::vector<Polygon> polys, std::uint8_t opt,
-                        const std::string& what)
+// The four option sets small soups are repaired with (here and in
+// test_small_soups.cpp): the defaults of `mrepair repair`, a scan, a given gap
+// tolerance and merge distance, CAD without the automatic tolerance and
+// with no component too small.
+inline mrepair::Repair_options small_soup_repair_options(unsigned k)
 {
-  using mrepair::Status;
   mrepair::Repair_options o;
-  switch (opt & 3) {
+  switch (k % 4) {
     case 1: o.profile = mrepair::Input_profile::scan; break;
     case 2:
       o.gap_tolerance = 0.3;
@@ -66,10 +67,20 @@ std::string repair_soup(std::vector<Point> pts, std::vector<Polygon> polys, std:
       break;
     case 3:
       o.profile = mrepair::Input_profile::cad;
+      o.automatic_gap_tolerance = false;
       o.min_component_faces = 1;
       break;
     default: break;
   }
+  return o;
+}
+
+template <class Mesh>
+std::string repair_soup(std::vector<Point> pts, std::vector<Polygon> polys, std::uint8_t opt,
+                        const std::string& what)
+{
+  using mrepair::Status;
+  mrepair::Repair_options o = small_soup_repair_options(opt & 3);
   o.count_self_intersections = (opt & 128) == 0;
   Mesh m;
   const mrepair::Repair_result r = mrepair::repair_polygon_soup(pts, polys, m, o);

@@ -7,6 +7,7 @@
 // edges either way), run through `repair_polygon_soup` on both mesh types
 // and through `mrepair repair` on files, each case under a watchdog. And the
 // file that hung: trimesh's polygonfaces.obj, a non-planar pentagon.
+#include "../fuzz/fuzz_soup.h"
 #include "fixtures.h"
 
 #include <mrepair/io.h>
@@ -200,26 +201,9 @@ constexpr double case_limit_seconds = 10.;
 constexpr double case_limit_seconds = 1.;
 #endif
 
-// The option sets the cases cycle through: the defaults of `mrepair repair`,
-// a scan, a given gap tolerance and merge distance, CAD without the
-// automatic tolerance.
 mrepair::Repair_options options_of(std::size_t k)
 {
-  mrepair::Repair_options o;
-  switch (k % 4) {
-    case 1: o.profile = mrepair::Input_profile::scan; break;
-    case 2:
-      o.gap_tolerance = 0.3;
-      o.merge_epsilon = 1e-6;
-      break;
-    case 3:
-      o.profile = mrepair::Input_profile::cad;
-      o.automatic_gap_tolerance = false;
-      o.min_component_faces = 1;
-      break;
-    default: break;
-  }
-  return o;
+  return mrepair_fuzz::small_soup_repair_options(unsigned(k % 4));
 }
 
 // runs one soup through the whole job; an empty string when the outcome is sound.

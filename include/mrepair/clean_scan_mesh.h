@@ -532,7 +532,8 @@ Scan_cleaning_result clean_scan_mesh(PolygonMesh& pmesh,
   // The last check: whatever the steps left, no exactly degenerate or
   // duplicate face and no non-manifold vertex goes out.
   const bool valid_ok = run_step(8, [&]() {
-    r.validity = ensure_valid_mesh(pmesh, CGAL::parameters::vertex_point_map(vpm));
+    // the structure was checked on entry; only the steps above edited it since
+    r.validity = internal::ensure_valid_mesh(pmesh, CGAL::parameters::vertex_point_map(vpm), false);
     SC::Step_outcome o;
     o.status = r.validity.status;
     o.changes = r.validity.operations + r.validity.duplicate_faces_removed +

@@ -150,13 +150,9 @@ Gap_closing_result close_gaps(TriangleMesh& tm, Automatic_gap_tolerance,
                               const NamedParameters& np = CGAL::parameters::default_values())
 {
   Gap_closing_result r;
-  r.tolerance_estimated = true;
-  // the estimate walks the border: a broken structure is refused first
-  if (std::string broken = internal::halfedge_structure_defect(tm); !broken.empty()) {
-    r.status = Status::invalid_mesh;
-    r.message = "close_gaps: the input's halfedge structure is broken: " + broken;
-    return r;
-  }
+  // the estimate reads each halfedge and its neighbours, walking no cycle;
+  // the closing checks the halfedge structure before its walks, and so does
+  // the count below (one check per path, not two)
   const Gap_tolerance_estimate e = estimate_gap_tolerance(tm, np);
   if (e.status != Status::ok) {
     r.status = e.status;
@@ -164,6 +160,9 @@ Gap_closing_result close_gaps(TriangleMesh& tm, Automatic_gap_tolerance,
   } else if (e.tolerance > 0) {
     // the estimate is absolute: the outermost option wins over a caller's relative flag
     r = close_gaps(tm, e.tolerance, parameters::gap_relative_tolerance(false, np));
+  } else if (std::string broken = internal::halfedge_structure_defect(tm); !broken.empty()) {
+    r.status = Status::invalid_mesh;
+    r.message = "close_gaps: the input's halfedge structure is broken: " + broken;
   } else {
     const auto counts = internal::count_boundary(tm);
     r.boundary_edges_before = r.boundary_edges_after = counts.first;

@@ -81,7 +81,7 @@ inline std::string walk_bound_message(const char* step)
 }
 
 /// an empty string when the halfedge structure of `m` is sound: for every
-/// halfedge h, next(prev(h)) == prev(next(h)) == h, opposite(opposite(h)) == h
+/// halfedge h, prev(next(h)) == h, opposite(opposite(h)) == h
 /// != opposite(h), target(h) == source(next(h)), face(next(h)) == face(h);
 /// every face's halfedge lies on it, every vertex's halfedge points to it.
 /// Otherwise the first rule found broken. Then every walk by next() or
@@ -92,9 +92,12 @@ std::string halfedge_structure_defect(const Mesh& m)
   using GT = boost::graph_traits<Mesh>;
   using halfedge_descriptor = typename GT::halfedge_descriptor;
   const auto check_halfedge = [&](halfedge_descriptor h) -> const char* {
-    const halfedge_descriptor o = opposite(h, m), n = next(h, m), p = prev(h, m);
+    // prev(next(h)) == h for every h makes next() injective, so a
+    // permutation of the finite set of halfedges with prev() its inverse:
+    // next(prev(h)) == h needs no check (nor its random read)
+    const halfedge_descriptor o = opposite(h, m), n = next(h, m);
     if (o == h || opposite(o, m) != h) return "opposite() is not an involution";
-    if (next(p, m) != h || prev(n, m) != h) return "prev() is not the inverse of next()";
+    if (prev(n, m) != h) return "prev() is not the inverse of next()";
     if (target(h, m) != target(opposite(n, m), m)) return "a halfedge's target is not its next's source";
     if (face(n, m) != face(h, m)) return "a face's cycle of next() leaves the face";
     return nullptr;
@@ -102,39 +105,57 @@ std::string halfedge_structure_defect(const Mesh& m)
   if constexpr (Is_surface_mesh<Mesh>::value) {
     using H = typename Mesh::Halfedge_index;
     const std::size_t slots = m.number_of_halfedges() + m.number_of_removed_halfedges();
-    const auto valid = [&](H g) { return std::size_t(g) < slots && !m.is_removed(g); };
+    const std::size_t vslots = m.number_of_vertices() + m.number_of_removed_vertices();
+    const std::size_t fslots = m.number_of_faces() + m.number_of_removed_faces();
+    // the removed flags are bits: read them only when something was removed
+    const bool garbage = m.has_garbage();
     std::atomic<const char*> found{nullptr};
     parallel_for_index(slots, 1 << 16, [&](std::size_t i) {
       const H h(static_cast<typename Mesh::size_type>(i));
-      if (m.is_removed(h) || found.load(std::memory_order_relaxed)) return;
-      const H hs[3] = {m.opposite(h), m.next(h), m.prev(h)};
-      for (H g : hs)
-        if (!valid(g)) {
+      if ((garbage && m.is_removed(h)) || found.load(std::memory_order_relaxed)) return;
+      for (H g : {m.next(h), m.prev(h)})  // opposite(h) is h's neighbour slot
+        if (std::size_t(g) >= slots || (garbage && m.is_removed(g))) {
           found = "a halfedge refers to a missing halfedge";
           return;
         }
-      if (!m.is_valid(m.target(h)) || m.is_removed(m.target(h))) {
+      const auto v = m.target(h);
+      if (std::size_t(v) >= vslots || (garbage && m.is_removed(v))) {
         found = "a halfedge points to a missing vertex";
         return;
       }
       const auto f = m.face(h);
-      if (f != typename Mesh::Face_index() && (std::size_t(f) >= m.number_of_faces() + m.number_of_removed_faces() ||
-                                               m.is_removed(f))) {
+      if (f != typename Mesh::Face_index() && (std::size_t(f) >= fslots || (garbage && m.is_removed(f)))) {
         found = "a halfedge lies on a missing face";
         return;
       }
       if (const char* why = check_halfedge(h)) found = why;
     });
     if (const char* why = found.load()) return why;
+    using F = typename Mesh::Face_index;
+    using V = typename Mesh::Vertex_index;
+    parallel_for_index(fslots, 1 << 16, [&](std::size_t i) {
+      const F f(static_cast<typename Mesh::size_type>(i));
+      if (garbage && m.is_removed(f)) return;
+      const H h = m.halfedge(f);
+      if (std::size_t(h) >= slots || m.face(h) != f) found = "a face's halfedge does not lie on it";
+    });
+    parallel_for_index(vslots, 1 << 16, [&](std::size_t i) {
+      const V v(static_cast<typename Mesh::size_type>(i));
+      if (garbage && m.is_removed(v)) return;
+      const H h = m.halfedge(v);
+      if (h != H() && (std::size_t(h) >= slots || m.target(h) != v))
+        found = "a vertex's halfedge does not point to it";
+    });
+    if (const char* why = found.load()) return why;
   } else {
     for (halfedge_descriptor h : halfedges(m))
       if (const char* why = check_halfedge(h)) return why;
-  }
-  for (auto f : faces(m))
-    if (face(halfedge(f, m), m) != f) return "a face's halfedge does not lie on it";
-  for (auto v : vertices(m)) {
-    const halfedge_descriptor h = halfedge(v, m);
-    if (h != GT::null_halfedge() && target(h, m) != v) return "a vertex's halfedge does not point to it";
+    for (auto f : faces(m))
+      if (face(halfedge(f, m), m) != f) return "a face's halfedge does not lie on it";
+    for (auto v : vertices(m)) {
+      const halfedge_descriptor h = halfedge(v, m);
+      if (h != GT::null_halfedge() && target(h, m) != v) return "a vertex's halfedge does not point to it";
+    }
   }
   return {};
 }

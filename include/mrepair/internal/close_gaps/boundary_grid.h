@@ -110,11 +110,11 @@ public:
       count *= double(hi[d]) - double(lo[d]) + 1;
     }
     constexpr long max_span = 4;
-    if (!(count <= double(max_span * max_span * max_span)) || !long_items_.empty()) {
-      // a radius of several cells (or segments kept out of the cells): no pruning
+    if (!(count <= double(max_span * max_span * max_span))) {  // a radius of several cells: no pruning
       query(p, r, f);
       return;
     }
+    visit_long_items(p, p, r, f);
     // squared distance from p to the slabs of each axis, shrunk by a hair so
     // that the rounding of index() cannot put a point in a cell measured beyond it
     const double slack = 1e-7 * cell_;  // index() of a coordinate 1e6 cells out is off by ~1e-10 cell
@@ -159,16 +159,10 @@ public:
       hi[d] = index(box_hi[d], d);
       cells *= double(hi[d]) - double(lo[d]) + 1;
     }
-    const auto meets = [&](const Item& it) {
-      for (int d = 0; d < 3; ++d)
-        if (std::max(it.a[d], it.b[d]) < box_lo[d] || std::min(it.a[d], it.b[d]) > box_hi[d]) return false;
-      return true;
-    };
-    for (const Item& it : long_items_)
-      if (meets(it)) f(it);
+    visit_long_items(a, b, r, f);
     if (!(cells <= double(items_.size()) + 64)) {  // NaN (a NaN radius) too
       for (const Item& it : items_)
-        if (meets(it)) f(it);
+        if (meets(it, box_lo, box_hi)) f(it);
       return;
     }
     for (long x = lo[0]; x <= hi[0]; ++x)
@@ -178,6 +172,26 @@ public:
   }
 
 private:
+  static bool meets(const Item& it, const P& lo, const P& hi)
+  {
+    for (int d = 0; d < 3; ++d)
+      if (std::max(it.a[d], it.b[d]) < lo[d] || std::min(it.a[d], it.b[d]) > hi[d]) return false;
+    return true;
+  }
+  // the segments kept out of the cells whose box meets the box [a,b] grown by r
+  template <class F>
+  void visit_long_items(const P& a, const P& b, double r, F& f) const
+  {
+    if (long_items_.empty()) return;
+    P lo, hi;
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(a[d], b[d]) - r;
+      hi[d] = std::max(a[d], b[d]) + r;
+    }
+    for (const Item& it : long_items_)
+      if (meets(it, lo, hi)) f(it);
+  }
+
   static constexpr std::uint32_t npos = 0xffffffffu;
   static constexpr double max_pieces = 1024;  // cells along one registered segment
   static constexpr std::uint64_t empty = ~std::uint64_t(0);  // pack() never yields it (63 bits)
