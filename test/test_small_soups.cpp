@@ -310,6 +310,21 @@ TYPED_TEST(Small_soups, non_planar_pentagon_of_trimesh_gives_three_triangles)
   EXPECT_EQ(mrepair::internal::halfedge_structure_defect(pentagon), "");
 }
 
+// Points and no polygon (a fuzz finding): empty_input and an empty, valid
+// mesh, not the points as isolated vertices.
+TYPED_TEST(Small_soups, points_without_polygons_give_an_empty_mesh)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  s.points = {Point(-500, 0, 500), Point(500, 0, -4e155), Point(-4, -4, -4), Point(-4, -4, -4)};
+  Mesh m;
+  const mrepair::Repair_result r = mrepair::repair_polygon_soup(s.points, s.polygons, m, mrepair::Repair_options());
+  EXPECT_EQ(r.status, Status::empty_input) << r.message;
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_EQ(mrepair_test::face_count(m), 0u);
+  EXPECT_EQ(static_cast<std::size_t>(vertices(m).size()), 0u);
+}
+
 // Two quads on the same four corners, opposite ways (a pillow): each cut
 // would double the other's, so the job takes the soup path.
 TYPED_TEST(Small_soups, polygons_that_cannot_be_cut_take_the_soup_path)

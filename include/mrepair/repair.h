@@ -242,7 +242,8 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   for (const Point& p : points)
     finite = finite && std::isfinite(CGAL::to_double(p.x())) &&
              std::isfinite(CGAL::to_double(p.y())) && std::isfinite(CGAL::to_double(p.z()));
-  bool direct = finite && is_polygon_soup_a_polygon_mesh(polygons, points.size());
+  // no polygon: the soup stage says empty_input (CGAL would keep the points as isolated vertices)
+  bool direct = finite && !polygons.empty() && is_polygon_soup_a_polygon_mesh(polygons, points.size());
   result.soup_needed = !direct;
   Soup_repair_result s;
   auto soup_to_manifold = [&](auto& soup_points, auto& soup_polygons) {

@@ -97,6 +97,7 @@ public:
       for (std::size_t c = 0; c < nc; ++c) adj[fill[src(c)]++] = Out{dst(c), c};
     }
     auto group_ok = [&](std::size_t v, std::string& reason) {
+      if (out_start[v] == out_start[v + 1]) return true;  // no corner (adj may be empty: no pointer arithmetic)
       Out* b = adj.data() + out_start[v];
       Out* e = adj.data() + out_start[v + 1];
       if (e - b <= 16) {  // insertion sort: groups are small (valence)
