@@ -242,8 +242,22 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   for (const Point& p : points)
     finite = finite && std::isfinite(CGAL::to_double(p.x())) &&
              std::isfinite(CGAL::to_double(p.y())) && std::isfinite(CGAL::to_double(p.z()));
-  // no polygon: the soup stage says empty_input (CGAL would keep the points as isolated vertices)
+  // CGAL's builder keeps every point, so a point no polygon uses would stay
+  // as an isolated vertex (an invalid mesh when no later step removes it: a
+  // refused cleaning). Such soups, and those without polygons, take the soup
+  // stage, which drops unused points (or says empty_input).
   bool direct = finite && !polygons.empty() && is_polygon_soup_a_polygon_mesh(polygons, points.size());
+  if (direct) {
+    std::vector<char> used(points.size(), 0);
+    std::size_t distinct = 0;
+    for (const auto& poly : polygons)
+      for (const auto i : poly)
+        if (!used[std::size_t(i)]) {
+          used[std::size_t(i)] = 1;
+          ++distinct;
+        }
+    direct = distinct == points.size();
+  }
   result.soup_needed = !direct;
   Soup_repair_result s;
   auto soup_to_manifold = [&](auto& soup_points, auto& soup_polygons) {
