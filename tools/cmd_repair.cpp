@@ -186,9 +186,7 @@ int run_repair(int argc, char** argv)
   r.to_report(report);
   if (!r.failed_stage.empty()) {
     cli::emit_report(a, report);
-    // a triangulation failure names the file, the others their stage
-    return cli::fail(r.failed_stage == "triangulation" ? a.positional[0] + ": " + r.message
-                                                       : r.message);
+    return cli::fail(r.message);  // it names the stage
   }
 
   if (!written_beside) write_output();

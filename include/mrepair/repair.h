@@ -92,7 +92,7 @@ struct Repair_result
   /// found nothing to clean; on failure the status of the stage that failed
   /// (`invalid_parameter` for bad options, `cancelled`).
   Status status = Status::ok;
-  std::string failed_stage;   ///< "options", "soup_to_manifold", "triangulation", "close_gaps", "clean"; empty when none failed
+  std::string failed_stage;   ///< "options", "soup_to_manifold", "close_gaps", "clean" (a polygon mesh that cannot be triangulated takes the soup stage); empty when none failed
   std::string message;        ///< one line: `stage: status[: reason]` on failure
   bool soup_needed = false;   ///< the input was not a manifold, consistently oriented mesh
   /// `out` is final: the cleaning succeeded (or found nothing to clean), so
