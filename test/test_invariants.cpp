@@ -958,8 +958,10 @@ TEST(RepairJob, InputInspectionBesideTheSoupStageChangesNothing)
 }
 
 // Issue 17: `output_final` tells a caller of `after_stage` that the mesh will
-// not change any more (mrepair repair writes it from the "clean" callback):
-// set when the cleaning succeeded, never when it failed or was cancelled.
+// not change any more (mrepair repair writes it from that callback): set
+// once the cleaning succeeded and the solid repair ran (issue 37: its
+// "resolve_intersections" callback, or "clean" when that step is off), never
+// when the cleaning failed or was cancelled.
 TEST(RepairJob, OutputIsFinalOnlyAfterASuccessfulCleaning)
 {
   using Mesh = CGAL::Surface_mesh<Point>;
@@ -990,7 +992,7 @@ TEST(RepairJob, OutputIsFinalOnlyAfterASuccessfulCleaning)
     ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
     ASSERT_FALSE(seen.empty());
     for (const auto& x : seen) {
-      if (x.first != "clean" && x.first != "after") {
+      if (x.first != "resolve_intersections" && x.first != "after") {
         EXPECT_FALSE(x.second) << x.first;
       }
     }
@@ -1003,10 +1005,25 @@ TEST(RepairJob, OutputIsFinalOnlyAfterASuccessfulCleaning)
       EXPECT_TRUE(r.failed_stage.empty()) << r.message;
       EXPECT_TRUE(r.output_final);
       ASSERT_GE(seen.size(), 2u);
-      EXPECT_EQ(seen[seen.size() - 2], std::make_pair(std::string("clean"), true));
+      EXPECT_EQ(seen[seen.size() - 3], std::make_pair(std::string("clean"), false));
+      EXPECT_EQ(seen[seen.size() - 2], std::make_pair(std::string("resolve_intersections"), true));
       EXPECT_EQ(seen.back(), std::make_pair(std::string("after"), true));
     }
   }
+  // without the solid repair, the mesh is final at the cleaning
+  std::vector<Point> points = s.points;
+  std::vector<Polygon> polygons = s.polygons;
+  std::vector<std::pair<std::string, bool>> seen;
+  mrepair::Repair_options options;
+  options.resolve_intersections = false;
+  options.after_stage = [&](const char* stage, const mrepair::Repair_result& r) {
+    seen.emplace_back(stage, r.output_final);
+  };
+  Mesh m;
+  const mrepair::Repair_result r = mrepair::repair_polygon_soup(points, polygons, m, options);
+  EXPECT_TRUE(r.output_final);
+  ASSERT_GE(seen.size(), 2u);
+  EXPECT_EQ(seen[seen.size() - 2], std::make_pair(std::string("clean"), true));
 }
 
 TEST(TimeBudgetVisitor, ForwardsHooksAndHonoursTheInnerStop)

@@ -5,6 +5,7 @@
 #include <mrepair/stitch_soup.h>
 
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/repair.h>
 #include <CGAL/Polygon_mesh_processing/shape_predicates.h>
@@ -14,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -175,6 +177,33 @@ Soup cracked_cube(double noise, bool reverse_one)
     s.polygons.push_back(p);
   }
   return s;
+}
+
+// two tetrahedra glued on the face (0,1,2), each written with its own copy of
+// it (trimesh's joined_tetrahedra.obj): the copy is a wall inside the solid.
+Soup joined_tetrahedra()
+{
+  Soup s;
+  s.points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0.3, 0.3, 1), Point(0.3, 0.3, -1)};
+  s.polygons = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}, {0, 1, 2}, {0, 4, 1}, {1, 4, 2}, {2, 4, 0}};
+  return s;
+}
+
+// the closed tetrahedron of joined_tetrahedra() above the plane z = 0.
+Soup tetrahedron()
+{
+  Soup s = joined_tetrahedra();
+  s.polygons.resize(4);
+  return s;
+}
+
+// true when `m` has a vertex at exactly `p`.
+template <class Mesh>
+bool has_point(const Mesh& m, const Point& p)
+{
+  for (auto v : vertices(m))
+    if (get(CGAL::vertex_point, m, v) == p) return true;
+  return false;
 }
 
 template <class C>
@@ -406,23 +435,165 @@ TYPED_TEST(Stitch_soup, MixedOrientationBecomesOutward)
   EXPECT_LT(component_volumes(m3)[0], 0);
 }
 
-TYPED_TEST(Stitch_soup, NestedShellsBoundAVolume)
+TYPED_TEST(Stitch_soup, NestedShellsKeepTheirInputOrientation)
 {
   using Mesh = typename TypeParam::Mesh;
   Soup s = icosphere(2, 2.0);        // outer
-  append(s, icosphere(2, 1.0));      // inner, given outward
+  append(s, icosphere(2, 1.0));      // inner, given outward: an overlap, not a cavity
   append(s, translated(icosphere(1, 0.5), 10, 0, 0));  // apart, reversed below
   for (std::size_t i = 640; i < s.polygons.size(); ++i) std::reverse(s.polygons[i].begin(), s.polygons[i].end());
   Mesh m;
   auto r = repair(s, m);
   EXPECT_EQ(r.components, 3u);
   EXPECT_EQ(r.closed_components, 3u);
-  EXPECT_EQ(r.components_flipped, 2u);  // inner shell inward, far sphere outward
-  EXPECT_EQ(r.faces_reoriented, 320u + 80u);
+  EXPECT_EQ(r.components_flipped, 1u);  // only the far sphere: it is inside nothing
+  EXPECT_EQ(r.faces_reoriented, 80u);
   auto vol = component_volumes(m);
-  EXPECT_LT(vol[0], 0);  // the inner shell
+  EXPECT_GT(vol[0], 0);
   EXPECT_GT(vol[1], 0);
   EXPECT_GT(vol[2], 0);
+}
+
+TYPED_TEST(Stitch_soup, NestedCubesOverlapOrCavityAsGiven)
+{
+  using Mesh = typename TypeParam::Mesh;
+  for (int cavity = 0; cavity < 2; ++cavity) {
+    Soup s = cube(3.0);
+    Soup inner = translated(cube(1.0), 1, 1, 1);
+    if (cavity)
+      for (Polygon& p : inner.polygons) std::reverse(p.begin(), p.end());
+    append(s, inner);
+    Mesh m;
+    auto r = repair(s, m);
+    EXPECT_EQ(r.faces_out, 24u);
+    EXPECT_EQ(r.closed_components, 2u);
+    EXPECT_EQ(r.components_flipped, 0u);
+    EXPECT_EQ(r.faces_reoriented, 0u);
+    auto vol = component_volumes(m);  // x6
+    if (cavity) {
+      EXPECT_NEAR(vol[0], -6.0, 1e-9);
+      EXPECT_NEAR(PMP::volume(m), 26.0, 1e-9);
+    } else {
+      EXPECT_NEAR(vol[0], 6.0, 1e-9);
+      EXPECT_NEAR(PMP::volume(m), 28.0, 1e-9);
+    }
+    EXPECT_NEAR(vol[1], 6.0 * 27, 1e-9);
+
+    // an inward outer shell is turned outward; the inner one keeps its own orientation
+    Soup inv = s;
+    for (std::size_t i = 0; i < 12; ++i) std::reverse(inv.polygons[i].begin(), inv.polygons[i].end());
+    Mesh m2;
+    auto r2 = repair(inv, m2);
+    EXPECT_EQ(r2.components_flipped, 1u);
+    EXPECT_EQ(r2.faces_reoriented, 12u);
+    EXPECT_NEAR(PMP::volume(m2), cavity ? 26.0 : 28.0, 1e-9);
+  }
+}
+
+TYPED_TEST(Stitch_soup, JoinedTetrahedraLoseTheirInternalWall)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh m;
+  auto r = repair(joined_tetrahedra(), m);
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_EQ(r.status, mrepair::Status::ok);
+  EXPECT_EQ(r.faces_in, 8u);
+  EXPECT_EQ(r.removed_internal_walls, 2u);
+  EXPECT_EQ(r.removed_duplicate, 0u);
+  EXPECT_EQ(r.faces_out, 6u);
+  EXPECT_EQ(face_count(m), 6u);
+  EXPECT_TRUE(CGAL::is_triangle_mesh(m));
+  EXPECT_TRUE(CGAL::is_closed(m));
+  EXPECT_EQ(r.complex_edges, 0u);
+  EXPECT_EQ(r.components, 1u);
+  EXPECT_EQ(r.closed_components, 1u);
+  EXPECT_EQ(r.vertices_out, 5u);
+  EXPECT_TRUE(has_point(m, Point(0.3, 0.3, 1)));
+  EXPECT_TRUE(has_point(m, Point(0.3, 0.3, -1)));
+  EXPECT_NEAR(PMP::volume(m), 1.0 / 3.0, 1e-12);  // base 1/2, heights 1 + 1
+
+  // keep_two_sided keeps both copies: two closed tetrahedra, nothing removed
+  Mesh two;
+  auto r2 = repair(joined_tetrahedra(), two, MP::keep_two_sided(true));
+  EXPECT_EQ(r2.removed_internal_walls, 0u);
+  EXPECT_EQ(r2.removed_duplicate, 0u);
+  EXPECT_EQ(r2.faces_out, 8u);
+  EXPECT_EQ(r2.closed_components, 2u);
+
+  // the same in place
+  Soup s = joined_tetrahedra();
+  auto rc = mrepair::clean_polygon_soup(s.points, s.polygons);
+  EXPECT_EQ(rc.removed_internal_walls, 2u);
+  EXPECT_EQ(s.polygons.size(), 6u);
+  EXPECT_EQ(rc.faces_in, rc.faces_out + rc.faces_removed());
+}
+
+TYPED_TEST(Stitch_soup, TwoCubesSharingAFaceBecomeOneBox)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = cube();
+  append(s, translated(cube(), 1, 0, 0));  // the wall x = 1: two triangles, each twice
+  Mesh m;
+  auto r = repair(s, m);
+  EXPECT_EQ(r.removed_internal_walls, 4u);
+  EXPECT_EQ(r.removed_duplicate, 0u);
+  EXPECT_EQ(r.faces_out, 20u);
+  EXPECT_EQ(r.complex_edges, 0u);
+  EXPECT_EQ(r.components, 1u);
+  EXPECT_EQ(r.closed_components, 1u);
+  EXPECT_TRUE(CGAL::is_closed(m));
+  EXPECT_NEAR(PMP::volume(m), 2.0, 1e-12);
+}
+
+TYPED_TEST(Stitch_soup, DoubledFacesOnOneShellKeepOneCopy)
+{
+  using Mesh = typename TypeParam::Mesh;
+  for (int reverse = 0; reverse < 2; ++reverse) {
+    Soup s = tetrahedron();
+    Polygon copy = s.polygons[1];
+    if (reverse) std::reverse(copy.begin(), copy.end());
+    s.polygons.push_back(copy);  // its edges have three faces: no wall
+    Mesh m;
+    auto r = repair(s, m);
+    EXPECT_EQ(r.removed_internal_walls, 0u);
+    EXPECT_EQ(r.removed_duplicate, 1u);
+    EXPECT_EQ(r.faces_out, 4u);
+    EXPECT_EQ(r.closed_components, 1u);
+    EXPECT_TRUE(CGAL::is_closed(m));
+    EXPECT_GT(PMP::volume(m), 0);
+  }
+  {
+    // a face and its three neighbours doubled: the middle face's edges have
+    // four faces (two copies of a neighbour each), the patch's border three
+    Soup s = icosphere(2);
+    const Polygon f = s.polygons[0];
+    std::vector<Polygon> twice = {f};
+    for (const Polygon& g : s.polygons) {
+      int shared = 0;
+      for (std::size_t v : g) shared += std::count(f.begin(), f.end(), v);
+      if (shared == 2) twice.push_back(g);
+    }
+    ASSERT_EQ(twice.size(), 4u);
+    for (const Polygon& g : twice) s.polygons.push_back(g);
+    Mesh m;
+    auto r = repair(s, m);
+    EXPECT_EQ(r.removed_internal_walls, 0u);
+    EXPECT_EQ(r.removed_duplicate, 4u);
+    EXPECT_EQ(r.faces_out, 320u);
+    EXPECT_EQ(r.boundary_edges, 0u);
+  }
+  {
+    // a whole shell given twice: every edge has four faces, but no body is walled off
+    Soup s = icosphere(1);
+    const std::size_t n = s.polygons.size();
+    for (std::size_t i = 0; i < n; ++i) s.polygons.push_back(s.polygons[i]);
+    Mesh m;
+    auto r = repair(s, m);
+    EXPECT_EQ(r.removed_internal_walls, 0u);
+    EXPECT_EQ(r.removed_duplicate, n);
+    EXPECT_EQ(r.faces_out, n);
+    EXPECT_EQ(r.closed_components, 1u);
+  }
 }
 
 TYPED_TEST(Stitch_soup, CrackedCubeClosesWithEpsilon)

@@ -154,6 +154,10 @@ struct Inspection_report
       d.add("self_intersecting_pairs", "not computed");
       d.add("self_intersecting_pairs_touching", "not computed");
     }
+    // no pair crosses: those left only touch at coincident vertices
+    d.add("intersection_free", !self_intersections_counted ? "not computed"
+                               : self_intersecting_pairs == self_intersecting_pairs_touching ? "yes"
+                                                                                            : "no");
     d.add("t_junctions", t_junctions);
     d.add("closed", closed);
     Report& q = r.section("quality");

@@ -13,11 +13,13 @@
 
 #include <mrepair/clean_scan_mesh.h>
 #include <mrepair/close_gaps.h>
+#include <mrepair/fill_small_holes.h>
 #include <mrepair/input_profile.h>
 #include <mrepair/inspect.h>
 #include <mrepair/io.h>
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
+#include <mrepair/resolve_intersections.h>
 #include <mrepair/status.h>
 #include <mrepair/stitch_soup.h>
 #include <mrepair/triangulate_polygons.h>
@@ -63,6 +65,13 @@ struct Repair_options
   std::size_t max_hole_vertices = 0;
   std::size_t min_component_faces = 400;   ///< components with fewer faces are removed
   std::size_t max_clean_iterations = 5;    ///< cleaning iteration cap
+  /// after the cleaning, `resolve_intersections()`: a shell crossing itself
+  /// is repaired locally, overlapping closed shells become their union, and
+  /// small holes it leaves or that were kept open beside a crossing are
+  /// filled. Meshes without crossing and nested shells pay the detection only.
+  bool resolve_intersections = true;
+  /// false: crossing closed shells are kept apart (no union; their crossings stay)
+  bool merge_overlapping_shells = true;
   /// count self-intersecting face pairs in the inspection of the output: the
   /// evidence that the repair left none (about 1 s of a 1M-face job)
   bool count_self_intersections = true;
@@ -78,7 +87,8 @@ struct Repair_options
   std::size_t concurrent_inspection_polygons = 4000000;
   /// called after the stages "before" (input inspected), "soup_to_manifold"
   /// (the mesh built, the soup's memory freed), "close_gaps" (when it ran),
-  /// "clean" (profile chosen) and "after" (output inspected), with the result
+  /// "clean" (profile chosen), "resolve_intersections" (when it ran) and
+  /// "after" (output inspected), with the result
   /// so far: lets a caller print while the job runs, or hand freed memory back
   /// to the system
   std::function<void(const char* stage, const Repair_result& so_far)> after_stage;
@@ -95,13 +105,17 @@ struct Repair_result
   std::string failed_stage;   ///< "options", "soup_to_manifold", "close_gaps", "clean" (a polygon mesh that cannot be triangulated takes the soup stage); empty when none failed
   std::string message;        ///< one line: `stage: status[: reason]` on failure
   bool soup_needed = false;   ///< the input was not a manifold, consistently oriented mesh
-  /// `out` is final: the cleaning succeeded (or found nothing to clean), so
-  /// only the output inspection, which reads it, is left. Set before the
-  /// "clean" callback of `after_stage`, so a caller may write `out` from there.
+  /// `out` is final: the cleaning succeeded (or found nothing to clean) and
+  /// the solid repair ran, so only the output inspection, which reads it, is
+  /// left. Set before the "resolve_intersections" callback of `after_stage`
+  /// (before "clean" when that step is off), so a caller may write `out` from there.
   bool output_final = false;
   Inspection_report before;   ///< the input soup
   Inspection_report after;    ///< the output mesh (filled when the job ran to its end)
   Scan_cleaning_result clean; ///< the cleaning pipeline (its `profile` says which ran and why)
+  bool intersections_resolved = false;       ///< the step ran (`intersections` is filled)
+  Intersection_repair_result intersections;  ///< what it did
+  Hole_filling_result holes_after_intersections;  ///< the holes filled after it (when it changed the mesh)
   bool gaps_closed = false;   ///< the gap closing ran (`gaps` is filled)
   Gap_closing_result gaps;    ///< its result: tolerance (and whether estimated), largest displacement
   std::size_t faces_in = 0, faces_out = 0;  ///< in triangles
@@ -308,6 +322,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
     removed.emplace_back("soup_non_finite", s.removed_non_finite);
     removed.emplace_back("soup_degenerate", s.removed_degenerate_index + s.removed_collinear);
     removed.emplace_back("soup_duplicate", s.removed_duplicate);
+    removed.emplace_back("soup_internal_wall", s.removed_internal_walls);
     faces_in = s.faces_in;  // the soup stage's count (triangles of distinct corners) rules
     if (!succeeded(s.status)) return fail("soup_to_manifold", s.status, s.message);
   }
@@ -368,13 +383,55 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
                             : clean(CGAL::parameters::default_values());
   const Scan_cleaning_result& c = result.clean;
   c.to_report(report.section("clean"));
-  result.output_final = succeeded(c.status) || c.status == Status::empty_input;
+  const bool cleaned = succeeded(c.status) || c.status == Status::empty_input;
+  // the solid repair, when it runs, edits `out` after this callback
+  result.output_final = cleaned && !(options.resolve_intersections && c.status != Status::empty_input);
   stage_done("clean");
-  if (!result.output_final) return fail("clean", c.status, c.message);
+  if (!cleaned) return fail("clean", c.status, c.message);
   for (std::size_t i = 0; i < number_of_clean_steps; ++i) {
     if (c.steps[i].faces_removed) removed.emplace_back(clean_step_name(i), c.steps[i].faces_removed);
     if (c.steps[i].faces_added) added.emplace_back(clean_step_name(i), c.steps[i].faces_added);
   }
+  // 4. Solid repair: the crossings the cleaning left, then the holes beside
+  // them (the hole filler refuses a patch into a surface that crosses itself).
+  bool crossings_known = false;
+  if (options.resolve_intersections && c.status != Status::empty_input) {
+    stage_clock.restart();
+    const bool cad = c.profile.profile == Input_profile::cad;
+    Intersection_repair_result& ir = result.intersections;
+    {
+      internal::Phase_scope<Handle> phase(visitor, "resolve_intersections");
+      ir = resolve_intersections(
+          out, MP::merge_overlapping_shells(options.merge_overlapping_shells,
+                                            MP::refine_hole_patches(!cad, CGAL::parameters::visitor(std::ref(forward)))));
+    }
+    result.intersections_resolved = true;
+    removed.emplace_back("resolve_intersections_local", ir.local_faces_removed);
+    added.emplace_back("resolve_intersections_local", ir.local_faces_added);
+    removed.emplace_back("resolve_intersections_union", ir.union_faces_removed);
+    added.emplace_back("resolve_intersections_union", ir.union_faces_added);
+    Report& rr = report.section("resolve_intersections");
+    ir.to_report(rr);
+    const bool changed = ir.local_faces_removed + ir.local_faces_added + ir.union_faces_removed > 0;
+    crossings_known = succeeded(ir.status) && !changed;
+    if (changed && succeeded(ir.status)) {
+      // the profile's hole limit and way of filling (clean_scan_mesh.h)
+      const std::size_t limit = hole_given ? hole_n : cad ? defaults::max_cad_hole_vertices : hole_n;
+      Hole_filling_result& h = result.holes_after_intersections;
+      h = fill_small_holes(out, MP::max_hole_vertices(
+                                    limit, MP::refine_hole_patches(
+                                               !cad, MP::max_hole_enlargements(cad ? std::size_t(0) : std::size_t(3)))));
+      removed.emplace_back("fill_holes_after_intersections", h.enlargement_faces_removed);
+      added.emplace_back("fill_holes_after_intersections", h.faces_added);
+      h.to_report(rr.section("holes_filled_after"));
+      crossings_known = crossings_known && h.faces_added == 0 && h.enlargement_faces_removed == 0;
+    }
+    rr.add("seconds", stage_clock.seconds());
+    result.output_final = true;
+    stage_done("resolve_intersections");
+    if (ir.status == Status::cancelled) return fail("resolve_intersections", ir.status, ir.message);
+  }
+
   result.faces_in = faces_in;
   result.faces_out = internal::face_count(out);
   {
@@ -391,11 +448,18 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   }
 
   stage_clock.restart();
+  // the solid repair's last count stands when nothing changed the mesh since
+  const bool count_again = options.count_self_intersections && !crossings_known;
   result.after = inspect(
       out, MP::max_hole_vertices(
                hole_n, MP::min_component_faces(
-                           comp_n, MP::spike_angle(inspect_spike, MP::count_self_intersections(
-                                                                      options.count_self_intersections)))));
+                           comp_n, MP::spike_angle(inspect_spike, MP::count_self_intersections(count_again)))));
+  if (options.count_self_intersections && crossings_known) {
+    result.after.self_intersections_counted = true;
+    result.after.self_intersecting_pairs =
+        result.intersections.crossing_pairs_after + result.intersections.touching_pairs_after;
+    result.after.self_intersecting_pairs_touching = result.intersections.touching_pairs_after;
+  }
   result.after.to_report(report.section("after"));
   report.section("after").add("seconds", stage_clock.seconds());
   stage_done("after");

@@ -11,7 +11,9 @@
 /// clean:   merge equal points (sort), then points within merge_epsilon (grid + union-find);
 ///          drop polygons with invalid indices or non-finite points; triangulate n-gons
 ///          (ear clipping in the best-fit plane); drop triangles with a repeated vertex,
-///          collinear triangles (exact predicate) and duplicates (same vertex set)
+///          collinear triangles (exact predicate) and duplicates (same vertex set); a
+///          set given exactly twice whose edges each have four faces, a body on each
+///          side (an internal wall between two solids), loses both copies
 /// cut:     sort face sides by edge; an edge with more than two faces (fin) pairs its
 ///          faces by angle around the edge: a face pairs with the oppositely directed
 ///          face met next around the edge (the wedge between them is the inside of a
@@ -26,13 +28,14 @@
 ///          smaller of two components with opposite orientations is flipped; merges that
 ///          would collapse a face are refused; cut/orient/split run again, so stitching
 ///          never leaves a complex edge or vertex
-/// outward: (orient_outward) closed components bound a volume: positive signed volume
-///          at even nesting depth, negative inside an odd number of other closed shells
-///          (the convention of PMP::orient_to_bound_a_volume; depth by ray parity)
+/// outward: (orient_outward) a closed component inside no other closed component gets
+///          positive signed volume; a nested one keeps the orientation most of its input
+///          faces had (outward: an overlap for a later union; inward: a cavity), unlike
+///          PMP::orient_to_bound_a_volume, which inverts odd depths (depth by ray parity)
 /// build:   halfedges written directly from the side-pairing table
 /// \endcode
-/// No face is lost except degenerate and duplicate ones and polygons whose
-/// indices or points are invalid; every removal is counted by reason.
+/// No face is lost except degenerate and duplicate ones, internal walls and
+/// polygons whose indices or points are invalid; every removal is counted by reason.
 
 #include <mrepair/internal/stitch_soup/driver.h>
 #include <mrepair/internal/stitch_soup/soup_repairer.h>
@@ -98,7 +101,8 @@ Soup_repair_result soup_in_place(PointRange& points, PolygonRange& polygons,
 /// `merge_epsilon`), drops polygons with out-of-range indices or non-finite
 /// points, unreferenced points, triangulates polygons with more than three
 /// vertices, and drops degenerate (repeated index, collinear) and duplicate
-/// triangles. The result is a triangle soup; it may still be non-manifold.
+/// triangles, and both copies of an internal wall (see the file comment). The
+/// result is a triangle soup; it may still be non-manifold.
 /// \tparam PointRange `std::vector`-like of points with `x()`, `y()`, `z()`
 ///         and a constructor from three doubles
 /// \tparam PolygonRange `std::vector`-like of ranges of integer indices
@@ -156,9 +160,12 @@ Soup_repair_result repair_polygon_soup_to_manifold(PointRange& points, PolygonRa
 ///     boundary edge's endpoints are stitched. 0 disables stitching.
 ///   - `keep_two_sided` (bool, default false): keep both of two faces with the
 ///     same vertices and opposite orientations (a two-sided sheet becomes a
-///     closed zero-volume surface); otherwise the first is kept.
-///   - `orient_outward` (bool, default true): closed components get outward
-///     normals, shells nested at odd depth inward.
+///     closed zero-volume surface); otherwise the first is kept, or neither
+///     when they are an internal wall (file comment). Keeping both also keeps
+///     such a wall, so two glued solids stay two closed shells.
+///   - `orient_outward` (bool, default true): closed components inside no
+///     other closed component get outward normals; nested shells keep the
+///     orientation of most of their input faces.
 ///   - `vertex_point_map` (default `get(CGAL::vertex_point, out)`): output points.
 ///   - `visitor` (`Default_visitor`): phases "clean", "cut", "orient", "split",
 ///     "stitch", "outward", "build"; `stop_requested()` is polled between them.

@@ -38,6 +38,7 @@ struct Soup_repair_result
   std::size_t removed_degenerate_index = 0;  ///< fewer than three distinct vertices (after merging)
   std::size_t removed_collinear = 0;         ///< three distinct but collinear points (exact test)
   std::size_t removed_duplicate = 0;         ///< same vertex set as a kept face
+  std::size_t removed_internal_walls = 0;    ///< both copies of a doubled face between two bodies
 
   std::size_t polygons_triangulated = 0;  ///< polygons with more than three vertices
   std::size_t non_finite_points = 0;      ///< points with a NaN/infinite coordinate
@@ -59,7 +60,7 @@ struct Soup_repair_result
   std::size_t faces_removed() const
   {
     return removed_invalid_index + removed_non_finite + removed_degenerate_index +
-           removed_collinear + removed_duplicate;
+           removed_collinear + removed_duplicate + removed_internal_walls;
   }
 
   void to_report(Report& r) const
@@ -77,6 +78,7 @@ struct Soup_repair_result
     rem.add("degenerate_index", removed_degenerate_index);
     rem.add("collinear", removed_collinear);
     rem.add("duplicate", removed_duplicate);
+    rem.add("internal_wall", removed_internal_walls);
     rem.add("total", faces_removed());
     Report& pts = r.section("points");
     pts.add("non_finite", non_finite_points);

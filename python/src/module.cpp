@@ -141,7 +141,7 @@ py::tuple repair(const py::object& vertices, const py::object& faces, const std:
                  const std::optional<double>& close_gaps, double merge_epsilon, const std::optional<double>& spike_angle,
                  const std::optional<long long>& max_hole, long long min_component,
                  long long iterations, bool self_intersections, bool input_self_intersections,
-                 const py::object& progress)
+                 bool resolve_intersections, bool merge_overlapping_shells, const py::object& progress)
 {
   Repair_options options;
   if (!parse_input_profile(profile, options.profile))
@@ -162,6 +162,8 @@ py::tuple repair(const py::object& vertices, const py::object& faces, const std:
   options.max_clean_iterations = static_cast<std::size_t>(iterations);
   options.count_self_intersections = self_intersections;
   options.count_input_self_intersections = input_self_intersections;
+  options.resolve_intersections = resolve_intersections;
+  options.merge_overlapping_shells = merge_overlapping_shells;
 
   Soup s = soup_from(vertices, faces);
   Python_visitor visitor(progress);
@@ -252,6 +254,7 @@ progress: None or progress(phase, fraction); returning False cancels
         "close_gaps"_a = py::none(), "merge_epsilon"_a = 0.0, "spike_angle"_a = py::none(),
         "max_hole"_a = py::none(), "min_component"_a = 400, "iterations"_a = 5,
         "self_intersections"_a = true, "input_self_intersections"_a = false,
+        "resolve_intersections"_a = true, "merge_overlapping_shells"_a = true,
         "progress"_a = py::none(),
         R"doc(Returns (V, F, report).
 
@@ -261,7 +264,8 @@ the input's profile (a dense scan gets RameshCleaner, a CAD export or print
 model keeps its geometry and parts and gets its holes closed), the validity
 step. The report is that of `mrepair repair --json` without the file
 sections: before, soup_to_manifold, triangulation (when polygons were
-triangulated), close_gaps (when run), clean, face_accounting, after.
+triangulated), close_gaps (when run), clean, resolve_intersections (when
+run), face_accounting, after.
 
 profile: "auto" (decided from the mesh), "scan" or "cad".
 close_gaps: close boundary gaps narrower than this (model units); None: a CAD
@@ -273,6 +277,9 @@ max_hole: holes with fewer boundary vertices are filled (None: 100 scan, 500 cad
 min_component: components with fewer faces are removed (relative to the largest).
 iterations: cleaning iteration cap.
 self_intersections: count self-intersections in the inspection after.
+resolve_intersections: after the cleaning, repair a shell crossing itself
+  locally and merge overlapping closed shells (doc/solids.md).
+merge_overlapping_shells: False keeps crossing closed shells apart.
 input_self_intersections: count them in the inspection before too (off by
   default: they cost more than the cleaning on a 1M-face scan).
 Raises ValueError with the stage and the reason when a stage fails.

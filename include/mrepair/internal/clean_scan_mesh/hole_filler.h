@@ -403,6 +403,14 @@ public:
     std::vector<halfedge_descriptor> all, loops;
     border_halfedges(pm_, all);
     loops_of(all, loops);
+    return run_on(std::move(loops), max_enlargements, visitor);
+  }
+
+  // The same on the given loops only, one border halfedge each (the holes an
+  // edit just opened: the rest of the mesh's borders are not looked at).
+  template <typename Visitor>
+  Status run_on(std::vector<halfedge_descriptor> loops, std::size_t max_enlargements, Visitor& visitor)
+  {
     prepare_guard(loops);
     std::vector<halfedge_descriptor> failed, next;
     std::vector<Batch_fill> batch;

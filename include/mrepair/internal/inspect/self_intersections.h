@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 namespace mrepair {
@@ -164,6 +165,9 @@ inline float float_step(float f, bool up)
 struct Self_intersection_counts
 {
   std::size_t pairs = 0, touching = 0;
+  // with count(eligible, true): the pairs that cross (not only touching),
+  // as indices of the arrays' faces, lower index first, in no fixed order
+  std::vector<std::pair<Inspect_index, Inspect_index>> crossing;
 };
 
 class Self_intersection_counter
@@ -220,7 +224,7 @@ public:
     return 1;
   }
 
-  Self_intersection_counts count(const std::vector<unsigned char>& eligible) const
+  Self_intersection_counts count(const std::vector<unsigned char>& eligible, bool list_crossing = false) const
   {
     std::vector<Inspect_index> F;
     for (std::size_t f = 0; f < a_.num_faces(); ++f)
@@ -362,9 +366,10 @@ public:
         if (x[d] > y[3 + d] || y[d] > x[3 + d]) return false;
       return true;
     };
-    auto add = [](Self_intersection_counts& c, int contact) {
+    auto add = [list_crossing](Self_intersection_counts& c, int contact, Inspect_index f, Inspect_index g) {
       c.pairs += contact != 0;
       c.touching += contact == 2;
+      if (list_crossing && contact == 1) c.crossing.emplace_back(std::min(f, g), std::max(f, g));
     };
     for (const Self_intersection_counts& s : chunked<Self_intersection_counts>(nb, [&](std::size_t b, std::size_t e,
                                                                                      Self_intersection_counts& s) {
@@ -402,7 +407,7 @@ public:
                    if (key(cell(std::max(x[0], y[0]), 0), cell(std::max(x[1], y[1]), 1),
                            cell(std::max(x[2], y[2]), 2)) != ck)
                      continue; // tested in another cell
-                   add(s, contact(F[p->face], F[q->face]));
+                   add(s, contact(F[p->face], F[q->face]), F[p->face], F[q->face]);
                  }
                r = r_end;
              }
@@ -410,6 +415,7 @@ public:
          })) {
       counts.pairs += s.pairs;
       counts.touching += s.touching;
+      counts.crossing.insert(counts.crossing.end(), s.crossing.begin(), s.crossing.end());
     }
 
     // big faces: against the others (box_intersection_d) and among themselves
@@ -426,7 +432,7 @@ public:
       for (std::size_t i = 0; i < n; ++i)
         if (count[i] != count[i + 1]) rest.push_back(make(i));
       auto report = [&](const Box& p, const Box& q) {
-        add(counts, contact(F[p.info()], F[q.info()]));
+        add(counts, contact(F[p.info()], F[q.info()]), F[p.info()], F[q.info()]);
       };
       std::vector<Box> bigs2 = bigs;
       CGAL::box_intersection_d(bigs.begin(), bigs.end(), rest.begin(), rest.end(), report);

@@ -9,7 +9,7 @@
 //
 //   load       merge points (exact sort, then grid + union-find within epsilon),
 //              drop bad polygons, triangulate n-gons (ear clipping), drop
-//              degenerate and duplicate triangles
+//              degenerate and duplicate triangles and internal walls (both copies)
 //   pair       sort sides by edge; two sides: partners; more (a fin): pair
 //              them by angle around the edge (see pair_fin)
 //   orient     BFS spanning tree per component; a non-tree side pair that
@@ -20,8 +20,8 @@
 //              (flipping the smaller component when needed), then pair, orient
 //              and split run again so that stitching never leaves a complex
 //              edge or vertex
-//   outward    optional: closed components get positive volume, inverted when
-//              nested at odd depth (ray parity)
+//   outward    optional: closed components inside no other get positive
+//              volume; nested ones keep their input orientation (ray parity)
 //   build      halfedges written directly from the partner table
 
 #include <mrepair/internal/inspect/parallel.h>
@@ -298,7 +298,8 @@ public:
   }
 
   // Same vertex set: keep the first face (and with keep_two_sided, the first of
-  // the opposite orientation too), in input order.
+  // the opposite orientation too), in input order. A set given exactly twice
+  // that walls off two bodies loses both copies (find_internal_walls).
   void remove_duplicates()
   {
     struct Key
@@ -336,9 +337,15 @@ public:
       });
     }
     std::vector<unsigned char> keep(F, 1);
+    std::vector<std::array<Idx, 2>> twice;  // sets given exactly twice: decided after the wall test
     for (std::size_t i = 0; i < F;) {
       std::size_t j = i + 1;
       while (j < F && keys[j].hi == keys[i].hi && keys[j].lo == keys[i].lo) ++j;
+      if (j - i == 2) {
+        twice.push_back({keys[i].t, keys[i + 1].t});
+        i = j;
+        continue;
+      }
       bool seen[2] = {false, false};
       bool any = false;
       for (std::size_t k = i; k < j; ++k) {
@@ -354,10 +361,138 @@ public:
       }
       i = j;
     }
+    free_memory(keys);
+    const std::vector<unsigned char> wall = find_internal_walls(twice, parity);
+    for (std::size_t p = 0; p < twice.size(); ++p) {
+      const Idx a = twice[p][0], b = twice[p][1];  // a first in input order
+      if (wall[p]) {
+        keep[a] = keep[b] = 0;
+        r.removed_internal_walls += 2;
+      } else if (!(opt.keep_two_sided && parity[a] != parity[b])) {
+        keep[b] = 0;
+        ++r.removed_duplicate;
+      }
+    }
     std::size_t w = 0;
     for (std::size_t t = 0; t < F; ++t)
       if (keep[t]) T[w++] = T[t];
     T.resize(w);
+  }
+
+  // Which of the vertex sets given exactly twice (`twice`: the two faces, in
+  // input order) are internal walls, as when two solids glued on a face are
+  // written each with its own copy of it. Every edge of such a face has four
+  // faces: the two copies and either one face on each side of the face's
+  // plane (a body each side) or both copies of another such set (a wall of
+  // several triangles). Decided per patch of sets joined by the latter edges:
+  // one failing face keeps the whole patch, and so does a patch without a body
+  // edge (a doubled closed shell), so a doubled patch on one shell keeps one
+  // copy. With keep_two_sided a patch with an opposite pair is kept (the
+  // option keeps those). Costs one parallel pass over the faces, and only
+  // when some set is given twice.
+  std::vector<unsigned char> find_internal_walls(const std::vector<std::array<Idx, 2>>& twice,
+                                                 const std::vector<unsigned char>& parity) const
+  {
+    const std::size_t n = twice.size();
+    std::vector<unsigned char> wall(n, 0);
+    if (n == 0) return wall;
+    std::vector<std::uint64_t> ek;  // the candidates' edges
+    ek.reserve(3 * n);
+    std::vector<unsigned char> marked(P.size(), 0);
+    for (const auto& pr : twice) {
+      const auto& f = T[pr[0]];
+      for (int i = 0; i < 3; ++i) {
+        ek.push_back(edge_key(f[i], f[(i + 1) % 3]));
+        marked[f[i]] = 1;
+      }
+    }
+    std::sort(ek.begin(), ek.end());
+    ek.erase(std::unique(ek.begin(), ek.end()), ek.end());
+    auto edge_id = [&](Idx a, Idx b) -> Idx {
+      const std::uint64_t k = edge_key(a, b);
+      auto it = std::lower_bound(ek.begin(), ek.end(), k);
+      return (it != ek.end() && *it == k) ? Idx(it - ek.begin()) : none;
+    };
+    // the faces on those edges, by edge, in face order (the vertex marks skip
+    // the search on almost every side)
+    using Hits = std::vector<std::pair<Idx, Idx>>;  // (edge, face)
+    const std::vector<Hits> parts = chunked<Hits>(T.size(), [&](std::size_t b, std::size_t e, Hits& h) {
+      for (std::size_t t = b; t < e; ++t)
+        for (int i = 0; i < 3; ++i) {
+          const Idx u = T[t][i], v = T[t][(i + 1) % 3];
+          if (!marked[u] || !marked[v]) continue;
+          const Idx id = edge_id(u, v);
+          if (id != none) h.push_back({id, Idx(t)});
+        }
+    });
+    std::vector<Idx> first(ek.size() + 1, 0), on_edge;
+    for (const Hits& h : parts)
+      for (const auto& x : h) ++first[x.first + 1];
+    for (std::size_t e = 0; e < ek.size(); ++e) first[e + 1] += first[e];
+    on_edge.resize(first.back());
+    {
+      std::vector<Idx> pos(first.begin(), first.end() - 1);
+      for (const Hits& h : parts)
+        for (const auto& x : h) on_edge[pos[x.first]++] = x.second;
+    }
+    std::vector<std::pair<Idx, Idx>> set_of;  // (face, candidate), by face
+    for (std::size_t p = 0; p < n; ++p) {
+      set_of.push_back({twice[p][0], Idx(p)});
+      set_of.push_back({twice[p][1], Idx(p)});
+    }
+    std::sort(set_of.begin(), set_of.end());
+    auto candidate_of = [&](Idx t) -> Idx {
+      auto it = std::lower_bound(set_of.begin(), set_of.end(), std::make_pair(t, Idx(0)));
+      return (it != set_of.end() && it->first == t) ? it->second : none;
+    };
+    using K = CGAL::Epick;
+    auto pt = [&](Idx v) { return K::Point_3(P[v][0], P[v][1], P[v][2]); };
+    auto apex = [&](Idx t, Idx a, Idx b) {  // the corner of t off the edge (a, b)
+      for (Idx v : T[t])
+        if (v != a && v != b) return v;
+      return T[t][0];
+    };
+    Union_find<Idx> patch(n);
+    std::vector<unsigned char> bad(n, 0), body(n, 0);
+    for (std::size_t p = 0; p < n; ++p) {
+      const Idx t0 = twice[p][0], t1 = twice[p][1];
+      if (opt.keep_two_sided && parity[t0] != parity[t1]) bad[p] = 1;
+      const auto& f = T[t0];
+      for (int i = 0; i < 3 && !bad[p]; ++i) {
+        const Idx a = f[i], b = f[(i + 1) % 3], e = edge_id(a, b);
+        if (first[e + 1] - first[e] != 4) {
+          bad[p] = 1;
+          break;
+        }
+        Idx other[2], k = 0;
+        for (Idx j = first[e]; j < first[e + 1]; ++j)
+          if (on_edge[j] != t0 && on_edge[j] != t1) other[k++] = on_edge[j];
+        const Idx q0 = candidate_of(other[0]), q1 = candidate_of(other[1]);
+        if (q0 == none && q1 == none) {
+          const auto s0 = K().orientation_3_object()(pt(f[0]), pt(f[1]), pt(f[2]), pt(apex(other[0], a, b)));
+          const auto s1 = K().orientation_3_object()(pt(f[0]), pt(f[1]), pt(f[2]), pt(apex(other[1], a, b)));
+          if (s0 != CGAL::COPLANAR && s1 != CGAL::COPLANAR && s0 != s1)
+            body[p] = 1;
+          else
+            bad[p] = 1;
+        } else if (q0 == q1) {
+          patch.unite(Idx(p), q0);
+        } else {
+          bad[p] = 1;
+        }
+      }
+    }
+    std::vector<unsigned char> patch_bad(n, 0), patch_body(n, 0);
+    for (std::size_t p = 0; p < n; ++p) {
+      const Idx root = patch.find(Idx(p));
+      patch_bad[root] |= bad[p];
+      patch_body[root] |= body[p];
+    }
+    for (std::size_t p = 0; p < n; ++p) {
+      const Idx root = patch.find(Idx(p));
+      wall[p] = !patch_bad[root] && patch_body[root];
+    }
+    return wall;
   }
 
   // Drops points used by no face; keeps the order of the others. Returns how many remain.
@@ -871,11 +1006,14 @@ public:
   }
 
   // ---------------------------------------------------------------- outward
-  // Closed components get positive volume at even nesting depth, negative at
-  // odd depth (the orient_to_bound_a_volume convention). Depth is the parity
-  // of crossings of a ray from a point of the component with other closed
-  // components (fixed generic direction; a ray through an edge is unlikely but
-  // would miscount).
+  // Closed components inside no other closed component get positive volume.
+  // A nested one keeps the orientation orient() gave it (its input's majority):
+  // an outward shell inside another is an overlap for a later union, an
+  // inward one a cavity, and only the input tells them apart (unlike the
+  // orient_to_bound_a_volume convention, which inverts odd depths). Depth
+  // counts the other closed components whose ray crossings from a point of
+  // this one are odd (fixed generic direction; a ray through an edge is
+  // unlikely but would miscount).
   void orient_outward()
   {
     const std::size_t F = T.size();
@@ -943,8 +1081,7 @@ public:
     std::vector<unsigned char> flip_c(C, 0);
     bool any = false;
     for (Idx c : closed) {
-      const bool want_positive = (depth[c] % 2) == 0;
-      if ((vol[c] > 0) != want_positive) {
+      if (depth[c] == 0 && vol[c] < 0) {
         flip_c[c] = 1;
         any = true;
         ++r.components_flipped;

@@ -1,0 +1,56 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Resolves the crossings of a triangle mesh: overlapping closed shells become
+// their union, a shell crossing itself is repaired locally.
+// usage: example_resolve_intersections [INPUT [OUTPUT]]
+// Without INPUT: two unit cubes, the second shifted by half a unit along
+// every axis, so that each passes through the other.
+#include <mrepair/io.h>
+#include <mrepair/resolve_intersections.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/boost/graph/generators.h>
+
+#include <iostream>
+
+using K = CGAL::Epick;
+using Mesh = CGAL::Surface_mesh<K::Point_3>;
+
+int main(int argc, char** argv)
+{
+  Mesh mesh;
+  if (argc > 1) {
+    mrepair::Io_result io = mrepair::read_polygon_mesh(argv[1], mesh);
+    if (!mrepair::succeeded(io.status)) {
+      std::cerr << "cannot read " << argv[1] << ": " << io.message << "\n";
+      return 1;
+    }
+  } else {
+    for (double o : {0.0, 0.5}) {
+      Mesh cube;
+      CGAL::make_hexahedron(K::Point_3(o, o, o), K::Point_3(o + 1, o, o), K::Point_3(o + 1, o + 1, o),
+                            K::Point_3(o, o + 1, o), K::Point_3(o, o + 1, o + 1), K::Point_3(o, o, o + 1),
+                            K::Point_3(o + 1, o, o + 1), K::Point_3(o + 1, o + 1, o + 1), cube);
+      CGAL::Polygon_mesh_processing::triangulate_faces(cube);
+      mesh += cube;
+    }
+  }
+  namespace MP = mrepair::parameters;
+  // keep the shells apart with merge_overlapping_shells(false)
+  mrepair::Intersection_repair_result r =
+      mrepair::resolve_intersections(mesh, MP::merge_overlapping_shells(true, MP::max_local_rounds(3)));
+  mrepair::Report report;
+  r.to_report(report.section("resolve_intersections"));
+  std::cout << report.to_text();
+  if (!mrepair::succeeded(r.status)) return 1;
+  if (argc > 2) {
+    mesh.collect_garbage();
+    mrepair::Io_result out = mrepair::write_polygon_mesh(argv[2], mesh);
+    if (!mrepair::succeeded(out.status)) {
+      std::cerr << "cannot write " << argv[2] << ": " << out.message << "\n";
+      return 1;
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,399 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Worker of resolve_intersections(): the local repair of shells that cross
+// themselves, then the union of closed shells that overlap (doc/solids.md).
+#ifndef MREPAIR_INTERNAL_RESOLVE_INTERSECTIONS_RESOLVER_H
+#define MREPAIR_INTERNAL_RESOLVE_INTERSECTIONS_RESOLVER_H
+
+#include <mrepair/internal/clean_scan_mesh/hole_filler.h>
+#include <mrepair/internal/local_operations.h>
+#include <mrepair/internal/resolve_intersections/crossings.h>
+#include <mrepair/internal/resolve_intersections/shells.h>
+#include <mrepair/internal/utility.h>
+#include <mrepair/status.h>
+
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/boost/graph/copy_face_graph.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mrepair {
+namespace internal {
+namespace solid {
+
+struct Resolver_settings
+{
+  bool merge_shells = true;          // union of overlapping closed shells
+  std::size_t local_rounds = 3;      // rounds of the local repair (each a ring wider)
+  bool refine_patches = true;        // the local repair's patches remeshed (not on CAD)
+  std::size_t max_patch_vertices = 2000;  // longer loops of the local repair stay open
+  std::size_t max_nesting_shells = 5000;  // above: no test for shells nested in others
+};
+
+// Counters of the worker; the public result copies them.
+struct Resolver_counts
+{
+  std::size_t crossing_before = 0, touching_before = 0;
+  std::size_t crossing_after = 0, touching_after = 0;
+  std::size_t local_rounds = 0;
+  std::size_t local_faces_removed = 0, local_faces_added = 0;
+  std::size_t local_holes_left_open = 0;  // after the last round
+  std::size_t local_rounds_taken_back = 0;
+  std::size_t shells_merged = 0;       // shells that went into a union (the union's result counts once each)
+  std::size_t solids_from_unions = 0;  // unions written back
+  std::size_t nested_shells_merged = 0;  // outward shells inside another outward shell, absorbed
+  std::size_t union_faces_removed = 0, union_faces_added = 0;
+  std::size_t unions_failed = 0;
+  std::vector<std::pair<std::string, std::size_t>> left_by_reason;  // crossing pairs left
+};
+
+template <typename PolygonMesh, typename VertexPointMap>
+class Intersection_resolver
+{
+  using PM = PolygonMesh;
+  using GT = boost::graph_traits<PM>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+  using Pair = std::pair<face_descriptor, face_descriptor>;
+  using Component_map = typename boost::property_map<PM, CGAL::dynamic_face_property_t<std::size_t>>::type;
+
+  PM& pm_;
+  VertexPointMap vpm_;
+  Resolver_settings settings_;
+
+public:
+  Resolver_counts counts;
+
+  Intersection_resolver(PM& pm, VertexPointMap vpm, const Resolver_settings& settings)
+    : pm_(pm), vpm_(vpm), settings_(settings)
+  {}
+
+  // Runs both phases; `scan` holds the crossing pairs of the mesh as given.
+  template <typename Visitor>
+  Status run(Crossing_scan<PM> scan, Visitor& visitor)
+  {
+    counts.crossing_before = scan.crossing.size();
+    counts.touching_before = scan.touching;
+    // the local repair leaves `scan` current; a union needs a new one
+    if (!scan.crossing.empty()) {
+      if (visitor.stop_requested()) return Status::cancelled;
+      repair_locally(scan, visitor);
+    }
+    if (settings_.merge_shells && scan.status == Status::ok) {
+      if (visitor.stop_requested()) return Status::cancelled;
+      if (merge_overlapping_shells(scan)) scan = scan_crossings(pm_, vpm_);
+    }
+    if (scan.status != Status::ok) return scan.status;
+    counts.crossing_after = scan.crossing.size();
+    counts.touching_after = scan.touching;
+    explain_left(scan);
+    return scan.crossing.empty() ? Status::ok : Status::partial;
+  }
+
+private:
+  // the shell of every face, and which shells cross themselves
+  std::vector<Shell<PM>> shells_of(Component_map& component) const
+  {
+    return label_shells(pm_, vpm_, component);
+  }
+
+  // --------------------------------------------------------------- local
+  // A shell that crosses itself (MeshFix's removal and refill, kept local):
+  // round r removes the faces of its crossing pairs and r rings around them
+  // (no vertex left pinched), and fills the loops this opens with the hole
+  // filler (Liepa's patch, refined, taken back when it would cross the
+  // surface; an aborted fill is enlarged by a ring, twice at most). The
+  // next round looks at the crossings left. A round that leaves more border
+  // loops or another number of components than it found, or no fewer
+  // crossings, or that removes more than a fifth of the shells it touches, is taken
+  // back (the mesh as copied before it) and ends the repair: a crossing is
+  // better than a hole or a piece cut off by the repair.
+  template <typename Visitor>
+  bool repair_locally(Crossing_scan<PM>& scan, Visitor& visitor)
+  {
+    Component_map component = get(CGAL::dynamic_face_property_t<std::size_t>(), pm_);
+    auto self_pairs = [&](const Crossing_scan<PM>& s) {
+      std::vector<face_descriptor> fs;
+      for (const Pair& p : s.crossing)
+        if (get(component, p.first) == get(component, p.second)) {
+          fs.push_back(p.first);
+          fs.push_back(p.second);
+        }
+      return fs;
+    };
+    std::vector<Shell<PM>> found = shells_of(component);
+    std::size_t shells = found.size(), loops = border_loop_count();
+    std::vector<face_descriptor> doomed = self_pairs(scan);
+    bool edited = false;
+    for (std::size_t round = 0; round < settings_.local_rounds && !doomed.empty(); ++round) {
+      if (visitor.stop_requested()) break;
+      ++counts.local_rounds;
+      PM backup;
+      CGAL::copy_face_graph(pm_, backup, CGAL::parameters::vertex_point_map(vpm_));
+      grow_by_rings(doomed, round);
+      // the faces of the shells the round touches: it may replace a fifth of
+      // them at most (a small shell folded through itself is no local defect)
+      std::size_t touched_faces = 0;
+      {
+        std::set<std::size_t> touched;
+        for (face_descriptor f : doomed) touched.insert(get(component, f));
+        for (std::size_t c : touched) touched_faces += found[c].faces.size();
+      }
+      std::size_t removed = 0, added = 0, open = 0, taken = 0;
+      {
+        Local_operations<PM, VertexPointMap> ops(pm_, vpm_);
+        std::vector<vertex_descriptor> survivors;
+        taken = ops.remove_faces_without_pinches(doomed, &survivors);
+        clean_pipeline::Small_hole_filler<PM, VertexPointMap> filler(
+            ops, settings_.max_patch_vertices, 1., settings_.refine_patches, false, 30, 0.);
+        std::vector<halfedge_descriptor> hs, new_loops;
+        for (vertex_descriptor v : survivors)
+          for (halfedge_descriptor h : CGAL::halfedges_around_target(v, pm_))
+            if (is_border(h, pm_)) hs.push_back(h);
+        filler.loops_of(hs, new_loops);
+        filler.run_on(std::move(new_loops), 2, visitor);
+        open = filler.result.open_holes.size();
+        taken += filler.result.enlargement_faces_removed;
+        removed = ops.counts.faces_removed;
+        added = ops.counts.faces_added;
+      }
+      Crossing_scan<PM> next = scan_crossings(pm_, vpm_);
+      std::vector<Shell<PM>> found1 = shells_of(component);
+      const std::size_t shells1 = found1.size(), loops1 = border_loop_count();
+      if (next.status != Status::ok || next.crossing.size() >= scan.crossing.size() || shells1 != shells ||
+          loops1 > loops || 5 * taken > touched_faces) {
+        // a user's property maps (the point map among them) stay attached
+        if constexpr (Is_surface_mesh<PM>::value) pm_.clear_without_removing_property_maps();
+        else CGAL::clear(pm_);
+        CGAL::copy_face_graph(backup, pm_, CGAL::parameters::default_values(),
+                              CGAL::parameters::vertex_point_map(vpm_));
+        ++counts.local_rounds_taken_back;
+        scan = scan_crossings(pm_, vpm_);
+        break;
+      }
+      counts.local_faces_removed += removed;
+      counts.local_faces_added += added;
+      counts.local_holes_left_open = open;
+      edited = true;
+      scan = std::move(next);
+      found = std::move(found1);
+      shells = shells1;
+      loops = loops1;
+      doomed = self_pairs(scan);
+    }
+    return edited;
+  }
+
+  std::size_t border_loop_count() const
+  {
+    std::vector<halfedge_descriptor> border;
+    border_halfedges(pm_, border);
+    std::set<halfedge_descriptor> seen;
+    std::size_t n = 0;
+    for (halfedge_descriptor h : border) {
+      if (seen.count(h)) continue;
+      ++n;
+      for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_)) seen.insert(g);
+    }
+    return n;
+  }
+
+  // `fs` and the faces around its vertices, `rings` times over
+  void grow_by_rings(std::vector<face_descriptor>& fs, std::size_t rings) const
+  {
+    std::set<face_descriptor> in(fs.begin(), fs.end());
+    std::vector<face_descriptor> frontier(in.begin(), in.end());
+    for (std::size_t r = 0; r < rings; ++r) {
+      std::set<vertex_descriptor> vs;
+      for (face_descriptor f : frontier)
+        for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_)) vs.insert(v);
+      frontier.clear();
+      for (vertex_descriptor v : vs)
+        for (halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(v, pm_), pm_))
+          if (!is_border(h, pm_) && in.insert(face(h, pm_)).second) frontier.push_back(face(h, pm_));
+    }
+    fs.assign(in.begin(), in.end());
+  }
+
+  // --------------------------------------------------------------- union
+  // Closed, outward shells that cross one another, or lie one inside the
+  // other, become their union (CGAL's exact corefinement, one shell at a
+  // time, largest first). An inward shell is a cavity and an open shell
+  // bounds nothing: neither takes part. A union that CGAL refuses (it would
+  // be non-manifold, an operand crosses itself) or that would still cross
+  // leaves its shells as they were.
+  bool merge_overlapping_shells(const Crossing_scan<PM>& scan)
+  {
+    Component_map component = get(CGAL::dynamic_face_property_t<std::size_t>(), pm_);
+    std::vector<Shell<PM>> shells = shells_of(component);
+    const std::size_t S = shells.size();
+    if (S < 2) return false;
+    std::vector<unsigned char> self_crossing(S, 0);
+    std::vector<std::size_t> parent(S);
+    std::iota(parent.begin(), parent.end(), std::size_t(0));
+    auto find = [&](std::size_t x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    auto solid = [&](std::size_t c) { return shells[c].closed && shells[c].volume > 0.; };
+    std::vector<std::pair<std::size_t, std::size_t>> touching_shells;
+    for (const Pair& p : scan.crossing) {
+      const std::size_t a = get(component, p.first), b = get(component, p.second);
+      if (a == b) self_crossing[a] = 1;
+      else touching_shells.emplace_back(a, b);
+    }
+    bool any = false;
+    for (const auto& ab : touching_shells)
+      if (solid(ab.first) && solid(ab.second) && !self_crossing[ab.first] && !self_crossing[ab.second]) {
+        parent[find(ab.first)] = find(ab.second);
+        any = true;
+      }
+    // shells inside another, outward both: the inner one adds nothing to
+    // the solid (a cavity is inward and stays)
+    std::vector<unsigned char> nested(S, 0);
+    if (S <= settings_.max_nesting_shells) any = find_nested(shells, self_crossing, parent, nested) || any;
+    if (!any) return false;
+    std::vector<std::vector<std::size_t>> clusters(S);
+    for (std::size_t c = 0; c < S; ++c) clusters[find(c)].push_back(c);
+    bool changed = false;
+    std::vector<face_descriptor> doomed;
+    std::vector<PM> results;
+    for (auto& members : clusters) {
+      if (members.size() < 2) continue;
+      std::sort(members.begin(), members.end(),
+                [&](std::size_t x, std::size_t y) { return shells[x].volume > shells[y].volume; });
+      PM acc;
+      copy_faces_out(pm_, vpm_, shells[members[0]].faces, acc);
+      std::vector<std::size_t> merged(1, members[0]);
+      for (std::size_t i = 1; i < members.size(); ++i) {
+        PM operand, out;
+        copy_faces_out(pm_, vpm_, shells[members[i]].faces, operand);
+        bool ok = false;
+        try {
+          ok = CGAL::Polygon_mesh_processing::corefine_and_compute_union(
+              acc, operand, out, CGAL::parameters::throw_on_self_intersection(true));
+        } catch (...) {
+          ok = false;
+        }
+        ok = ok && CGAL::is_valid_polygon_mesh(out) && CGAL::is_closed(out) && CGAL::is_triangle_mesh(out);
+        if (!ok) {
+          ++counts.unions_failed;
+          continue;
+        }
+        acc = std::move(out);
+        merged.push_back(members[i]);
+      }
+      if (merged.size() < 2) continue;
+      // rounding the intersection points to doubles can leave a crossing
+      if (!scan_crossings(acc, get(CGAL::vertex_point, acc)).crossing.empty()) {
+        ++counts.unions_failed;
+        continue;
+      }
+      for (std::size_t c : merged) {
+        doomed.insert(doomed.end(), shells[c].faces.begin(), shells[c].faces.end());
+        counts.nested_shells_merged += nested[c];
+      }
+      counts.shells_merged += merged.size();
+      ++counts.solids_from_unions;
+      results.push_back(std::move(acc));
+      changed = true;
+    }
+    if (!changed) return false;
+    {
+      Local_operations<PM, VertexPointMap> ops(pm_, vpm_);
+      counts.union_faces_removed += ops.remove_components(doomed);
+    }
+    for (const PM& r : results) {
+      counts.union_faces_added += internal::face_count(r);
+      CGAL::copy_face_graph(r, pm_, CGAL::parameters::default_values(), CGAL::parameters::vertex_point_map(vpm_));
+    }
+    return true;
+  }
+
+  // Unites each closed outward shell that no crossing touches with the
+  // closed outward shell that contains it (box first, then CGAL's exact
+  // side-of-mesh test on one of its vertices); `nested` marks the inner ones.
+  bool find_nested(const std::vector<Shell<PM>>& shells, const std::vector<unsigned char>& self_crossing,
+                   std::vector<std::size_t>& parent, std::vector<unsigned char>& nested)
+  {
+    const std::size_t S = shells.size();
+    auto solid = [&](std::size_t c) {
+      return shells[c].closed && shells[c].volume > 0. && !self_crossing[c];
+    };
+    auto inside_box = [](const CGAL::Bbox_3& a, const CGAL::Bbox_3& b) {
+      return b.xmin() <= a.xmin() && a.xmax() <= b.xmax() && b.ymin() <= a.ymin() && a.ymax() <= b.ymax() &&
+             b.zmin() <= a.zmin() && a.zmax() <= b.zmax();
+    };
+    using Point = typename boost::property_traits<VertexPointMap>::value_type;
+    using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
+    using Side = CGAL::Side_of_triangle_mesh<PM, Kernel>;
+    // each container copied out once, with its tree
+    struct Container
+    {
+      PM mesh;
+      std::unique_ptr<Side> side;
+    };
+    std::map<std::size_t, Container> containers;
+    bool any = false;
+    for (std::size_t c = 0; c < S; ++c) {
+      if (!solid(c) || parent[c] != c) continue;  // already in a union: handled there
+      // the smallest container wins, so a shell inside two goes with the inner
+      std::size_t best = S;
+      for (std::size_t d = 0; d < S; ++d) {
+        if (d == c || !solid(d) || !inside_box(shells[c].box, shells[d].box)) continue;
+        if (shells[d].volume <= shells[c].volume) continue;
+        Container& k = containers[d];
+        if (!k.side) {
+          copy_faces_out(pm_, vpm_, shells[d].faces, k.mesh);
+          k.side.reset(new Side(k.mesh));
+        }
+        const Point q = get(vpm_, target(halfedge(shells[c].faces.front(), pm_), pm_));
+        if ((*k.side)(q) != CGAL::ON_BOUNDED_SIDE) continue;
+        if (best == S || shells[d].volume < shells[best].volume) best = d;
+      }
+      if (best == S) continue;
+      nested[c] = 1;
+      std::size_t r = best;
+      while (parent[r] != r) r = parent[r];
+      parent[c] = r;
+      any = true;
+    }
+    return any;
+  }
+
+  // -------------------------------------------------------------- report
+  void explain_left(const Crossing_scan<PM>& scan)
+  {
+    if (scan.crossing.empty()) return;
+    Component_map component = get(CGAL::dynamic_face_property_t<std::size_t>(), pm_);
+    std::vector<Shell<PM>> shells = shells_of(component);
+    std::map<std::string, std::size_t> by;
+    for (const Pair& p : scan.crossing) {
+      const std::size_t a = get(component, p.first), b = get(component, p.second);
+      std::string why;
+      if (a == b) why = "shell_crosses_itself";
+      else if (!shells[a].closed || !shells[b].closed) why = "open_shells_cross";
+      else if (!(shells[a].volume > 0.) || !(shells[b].volume > 0.)) why = "inward_shell_crosses";
+      else if (!settings_.merge_shells) why = "shells_kept_separate";
+      else why = "union_failed";
+      ++by[why];
+    }
+    counts.left_by_reason.assign(by.begin(), by.end());
+  }
+};
+
+} // namespace solid
+} // namespace internal
+} // namespace mrepair
+
+#endif // MREPAIR_INTERNAL_RESOLVE_INTERSECTIONS_RESOLVER_H

@@ -1,0 +1,128 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Shells (connected components) of a triangle mesh for the intersection
+// repair: which faces, closed or not, signed volume, box; a component copied
+// out into a mesh of its own (the operand of a Boolean) and a mesh copied
+// back in.
+#ifndef MREPAIR_INTERNAL_RESOLVE_INTERSECTIONS_SHELLS_H
+#define MREPAIR_INTERNAL_RESOLVE_INTERSECTIONS_SHELLS_H
+
+#include <mrepair/internal/utility.h>
+
+#include <CGAL/Bbox_3.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/copy_face_graph.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+
+#include <array>
+#include <cstddef>
+#include <map>
+#include <vector>
+
+namespace mrepair {
+namespace internal {
+namespace solid {
+
+template <typename PolygonMesh>
+struct Shell
+{
+  using face_descriptor = typename boost::graph_traits<PolygonMesh>::face_descriptor;
+  std::vector<face_descriptor> faces;
+  bool closed = true;   ///< no border edge
+  double volume = 0.;   ///< signed: positive when the normals point outwards
+  CGAL::Bbox_3 box;
+};
+
+// Labels the faces of `pm` by component (`component`, a face property map
+// written for every face) and returns the shells, in the order their first
+// face is met.
+template <typename PolygonMesh, typename VertexPointMap, typename ComponentMap>
+std::vector<Shell<PolygonMesh>> label_shells(const PolygonMesh& pm, VertexPointMap vpm, ComponentMap component)
+{
+  using GT = boost::graph_traits<PolygonMesh>;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+  constexpr std::size_t unset = std::size_t(-1);
+  std::vector<Shell<PolygonMesh>> shells;
+  for (face_descriptor f : faces(pm)) put(component, f, unset);
+  std::vector<face_descriptor> stack;
+  for (face_descriptor f0 : faces(pm)) {
+    if (get(component, f0) != unset) continue;
+    const std::size_t c = shells.size();
+    shells.emplace_back();
+    Shell<PolygonMesh>& s = shells.back();
+    put(component, f0, c);
+    stack.assign(1, f0);
+    bool origin_set = false;
+    Vec3 origin{{0, 0, 0}};
+    double v6 = 0.;
+    while (!stack.empty()) {
+      const face_descriptor f = stack.back();
+      stack.pop_back();
+      s.faces.push_back(f);
+      std::array<Vec3, 3> p;
+      int k = 0;
+      for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, pm), pm)) {
+        const Vec3 q = point(vpm, target(h, pm));
+        s.box += CGAL::Bbox_3(q[0], q[1], q[2], q[0], q[1], q[2]);
+        if (k < 3) p[k] = q;
+        ++k;
+        const halfedge_descriptor o = opposite(h, pm);
+        if (is_border(o, pm)) {
+          s.closed = false;
+          continue;
+        }
+        const face_descriptor g = face(o, pm);
+        if (get(component, g) == unset) {
+          put(component, g, c);
+          stack.push_back(g);
+        }
+      }
+      if (k != 3) continue;
+      if (!origin_set) {
+        origin = p[0];
+        origin_set = true;
+      }
+      // the volume about a point of the shell: small terms, little cancellation
+      v6 += dot(sub(p[0], origin), cross(sub(p[1], origin), sub(p[2], origin)));
+    }
+    s.volume = v6 / 6.;
+  }
+  return shells;
+}
+
+// Copies the faces `fs` of `pm` (one or more whole components, triangles)
+// into the empty mesh `out`, through a soup so that the face order does not
+// matter.
+template <typename PolygonMesh, typename VertexPointMap, typename FaceRange>
+void copy_faces_out(const PolygonMesh& pm, VertexPointMap vpm, const FaceRange& fs, PolygonMesh& out)
+{
+  using GT = boost::graph_traits<PolygonMesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using Point = typename boost::property_traits<VertexPointMap>::value_type;
+  std::vector<Point> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  std::map<vertex_descriptor, std::size_t> index;
+  for (const auto& f : fs) {
+    std::array<std::size_t, 3> t;
+    int k = 0;
+    for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm), pm)) {
+      auto it = index.find(v);
+      if (it == index.end()) {
+        it = index.emplace(v, points.size()).first;
+        points.push_back(get(vpm, v));
+      }
+      if (k < 3) t[k] = it->second;
+      ++k;
+    }
+    if (k == 3) triangles.push_back(t);
+  }
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, triangles, out);
+}
+
+} // namespace solid
+} // namespace internal
+} // namespace mrepair
+
+#endif // MREPAIR_INTERNAL_RESOLVE_INTERSECTIONS_SHELLS_H
