@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <iomanip>
@@ -88,7 +89,10 @@ Outcome run_variant(const Variant& v, const std::string& input)
   int wstatus = 0;
   waitpid(pid, &wstatus, 0);
   if (!WIFEXITED(wstatus)) {
-    o.failure = "crashed (signal " + std::to_string(WTERMSIG(wstatus)) + ")";
+    // SIGALRM: a task's time bound (e.g. MREPAIR_BENCH_TIME_LIMIT) ran out
+    o.failure = WTERMSIG(wstatus) == SIGALRM
+                    ? std::string("over the time limit")
+                    : "crashed (signal " + std::to_string(WTERMSIG(wstatus)) + ")";
     return o;
   }
   std::istringstream in(text);
