@@ -14,6 +14,7 @@
 #include <mrepair/input_profile.h>
 #include <mrepair/close_gaps.h>
 #include <mrepair/fill_small_holes.h>
+#include <mrepair/resolve_intersections.h>
 #include <mrepair/inspect.h>
 #include <mrepair/relax_spikes.h>
 #include <mrepair/repair.h>
@@ -651,6 +652,28 @@ TYPED_TEST(Invariants, RandomSoupsThroughEveryCall)
           EXPECT_LE(points_not_in_input(m, in), r.vertices_added) << ctx;
           // on Liepa's patch, inside the loop's box; fairing may leave it
           if (!fair) { EXPECT_EQ(points_outside(m, in), 0u) << ctx; }
+        }
+        return r.status;
+      });
+    }
+
+    // -- resolve_intersections (issue 37): faces counted, intersection_free
+    // only without crossing pairs left, vertices stay in the input's box
+    // (patches lie on Liepa's patch, union vertices on the input's faces)
+    {
+      const bool merge = chance(rng, 0.7);
+      run_mesh_call("resolve_intersections", mesh, in, tally, ctx, [&](Mesh& m) {
+        const std::size_t f0 = nfaces(m);
+        mrepair::Intersection_repair_result r =
+            mrepair::resolve_intersections(m, MP::merge_overlapping_shells(merge));
+        if (!finite) { EXPECT_EQ(r.status, Status::non_finite_input) << ctx; }
+        if (mrepair::succeeded(r.status)) {
+          EXPECT_EQ(f0 - r.local_faces_removed + r.local_faces_added - r.union_faces_removed + r.union_faces_added,
+                    nfaces(m)) << ctx;
+          EXPECT_EQ(r.intersection_free, r.crossing_pairs_after == 0) << ctx;
+          EXPECT_EQ(r.status == Status::ok, r.crossing_pairs_after == 0) << ctx;
+          EXPECT_EQ(points_outside(m, in), 0u) << ctx;
+          if (!merge) { EXPECT_EQ(r.shells_merged, 0u) << ctx; }
         }
         return r.status;
       });

@@ -23,6 +23,7 @@
 
 #include <CGAL/boost/graph/helpers.h>
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -38,9 +39,10 @@ namespace mrepair {
 struct Intersection_repair_result
 {
   /// `ok`: no crossing pair left; `partial`: some left (see
-  /// `crossing_left_by_reason`); `invalid_mesh` (not a valid triangle mesh),
-  /// `non_finite_input` (coordinates beyond 1e100) and `cancelled` leave the
-  /// mesh as it was.
+  /// `crossing_left_by_reason`); `empty_input`, `invalid_mesh` (not a valid
+  /// triangle mesh) and `non_finite_input` (a NaN or infinite coordinate, or
+  /// coordinates beyond 1e100) leave the mesh as it was; `cancelled` keeps
+  /// the rounds done (the mesh is valid).
   Status status = Status::ok;
   std::string message;
   std::size_t crossing_pairs_before = 0;  ///< pairs of faces that cross (not only touching)
@@ -110,12 +112,14 @@ struct Intersection_repair_result
 /// pairs <- the crossing face pairs (exact predicates; pairs that only touch
 ///          at coincident vertices are not crossings)
 /// shells that cross themselves, up to max_local_rounds rounds r = 0, 1, ...:
-///   remove the faces of their crossing pairs and r rings around them
+///   remove the faces of their crossing pairs and r rings around them, with
+///     the pieces that removal would cut off
 ///   refill the loops with the hole filler (Liepa, refined; a patch that would
 ///     cross the surface is taken back; an aborted fill grows by a ring, twice)
 ///   pairs <- the crossing pairs left
 ///   a round that leaves more border loops, another number of components, no
-///     fewer crossings, or removes over a fifth of the shells it touches, is undone (the mesh rebuilt from a copy) and ends the loop
+///     fewer crossings, or removes over a third of the shells it touches, is
+///     undone (the mesh rebuilt from a copy) and ends the local repair
 /// if merge_overlapping_shells:
 ///   clusters <- closed outward shells joined by crossing pairs, and each
 ///               closed outward shell with the smallest such shell containing it
@@ -159,8 +163,15 @@ Intersection_repair_result resolve_intersections(TriangleMesh& tm,
     return r;
   };
   if (internal::face_count(tm) == 0) return finish(Status::empty_input, "no faces");
-  if (internal::coordinates_too_large(tm, vpm))
-    return finish(Status::non_finite_input, "coordinates beyond 1e100 or not finite: mesh left as it was");
+  // a NaN corner has no side: no crossing test, no union can use it
+  bool finite = true;
+  for (auto v : vertices(tm)) {
+    const auto& p = get(vpm, v);
+    finite = finite && std::isfinite(CGAL::to_double(p.x())) && std::isfinite(CGAL::to_double(p.y())) &&
+             std::isfinite(CGAL::to_double(p.z()));
+  }
+  if (!finite || internal::coordinates_too_large(tm, vpm))
+    return finish(Status::non_finite_input, "coordinates not finite or beyond 1e100: mesh left as it was");
   const std::string defect = internal::halfedge_structure_defect(tm);
   if (!defect.empty()) return finish(Status::invalid_mesh, defect);
   // the local structure check above stands for is_valid_polygon_mesh (seconds at 1M faces)

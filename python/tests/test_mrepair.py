@@ -272,6 +272,27 @@ def test_repair_options():
         mrepair.repair(V, F, max_hole=0)
 
 
+def test_repair_merges_overlapping_shells():
+    """two cubes passing through each other: their union by default, both
+    kept (and their crossings reported) with merge_overlapping_shells=False."""
+    V, F = cube_quads()
+    V2 = np.vstack([V, V + 0.5])
+    F2 = [list(f) for f in F] + [[i + 8 for i in f] for f in F]
+    _, F3, report = mrepair.repair(V2, F2)
+    section = report["resolve_intersections"]
+    assert section["shells_merged"] == 2 and section["solids_from_unions"] == 1
+    assert report["after"]["defects"]["connected_components"] == 1
+    assert report["after"]["defects"]["closed"] is True
+    assert report["after"]["defects"]["intersection_free"] == "yes"
+    assert report["face_accounting"]["reconciles"] is True and report["face_accounting"]["faces_out"] == len(F3)
+    _, F4, kept = mrepair.repair(V2, F2, merge_overlapping_shells=False)
+    assert len(F4) == 24 and kept["after"]["defects"]["connected_components"] == 2
+    assert kept["after"]["defects"]["intersection_free"] == "no"
+    assert "shells_kept_separate" in kept["resolve_intersections"]["crossing_left_by_reason"]
+    _, _, off = mrepair.repair(V2, F2, resolve_intersections=False)
+    assert "resolve_intersections" not in off
+
+
 def test_remesh_modes():
     V, F = sphere(16, 32)
     V2, F2, report = mrepair.remesh(V, F, edge_length=0.2)

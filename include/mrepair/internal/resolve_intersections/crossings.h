@@ -30,6 +30,7 @@ struct Crossing_scan
   std::vector<std::pair<face_descriptor, face_descriptor>> crossing;
   std::size_t touching = 0;  ///< pairs that only touch at coincident vertices
   std::size_t skipped = 0;   ///< faces not tested: not triangles, non-finite or collinear corners
+  std::size_t components = 0;  ///< edge-connected components (no union needs looking for below 2)
 };
 
 // Lists the crossing pairs of `pm`. Faces that are not triangles with three
@@ -62,6 +63,13 @@ Crossing_scan<PolygonMesh> scan_crossings(const PolygonMesh& pm, VertexPointMap 
     eligible[f] = 1;
   });
   for (unsigned char e : eligible) scan.skipped += !e;
+  {
+    Union_find<Inspect_index> uf(nf);
+    for (std::size_t e = 0; e < a.num_edges(); ++e)
+      for (Inspect_index i = a.edge_off[e] + 1; i < a.edge_off[e + 1]; ++i)
+        uf.unite(a.corner_f[a.edge_corners[a.edge_off[e]]], a.corner_f[a.edge_corners[i]]);
+    for (std::size_t f = 0; f < nf; ++f) scan.components += uf.find(static_cast<Inspect_index>(f)) == f;
+  }
   certify_flat_stars(a);
   keep_for_self_intersections(a);
   Self_intersection_counts counts = Self_intersection_counter(a).count(eligible, true);

@@ -1,0 +1,147 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Task "resolve-intersections": mrepair::resolve_intersections beside CGAL
+// 5.5's PMP::experimental::remove_self_intersections (undocumented; the same
+// name and signature in CGAL 6), each with its defaults, on its own copy of
+// the input (read from the file in its own process).
+//
+// Both sides are judged by the same code on the input and on the output
+// (`before` / `after`): mrepair::inspect with the self-intersection count on
+// gives the pairs of faces that intersect and, of those, the pairs that only
+// touch at coincident vertices; crossing pairs = pairs - touching. Beside
+// them: faces, components, boundary edges, area, volume,
+// CGAL::is_valid_polygon_mesh and CGAL::is_closed. The timed section is the
+// call alone (wall time; `result.cpu_seconds` is the CPU time of all threads
+// in it); the harness prints CGAL time / mrepair time.
+//
+// Time bound: with MREPAIR_BENCH_TIME_LIMIT=SECONDS in the environment, a
+// variant whose call runs longer is stopped by SIGALRM (the harness then
+// prints "over the time limit" in its column; the other column is kept).
+#include "bench.h"
+
+#include <mrepair/inspect.h>
+#include <mrepair/io.h>
+#include <mrepair/resolve_intersections.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/repair_self_intersections.h>
+#include <CGAL/Real_timer.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+namespace {
+
+using K = CGAL::Epick;
+using Point = K::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+namespace MP = mrepair::parameters;
+using mrepair::bench::Measurement;
+
+// CPU seconds (all threads, user + system) used by this process so far.
+double cpu_seconds()
+{
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  return double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+         1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
+
+Mesh load(const std::string& path)
+{
+  Mesh m;
+  mrepair::Io_result r = mrepair::read_polygon_mesh(path, m);
+  if (r.status != mrepair::Status::ok || faces(m).size() == 0)
+    throw std::runtime_error("cannot read " + path + " as a polygon mesh: " + r.message);
+  return m;
+}
+
+// The same figures for every variant, before and after.
+void table(const Mesh& m, mrepair::Report& r)
+{
+  const mrepair::Inspection_report i = mrepair::inspect(m, MP::count_self_intersections(true));
+  r.add("faces", i.faces);
+  if (i.self_intersections_counted) {
+    r.add("intersecting_pairs", i.self_intersecting_pairs);
+    r.add("touching_pairs", i.self_intersecting_pairs_touching);
+    r.add("crossing_pairs", i.self_intersecting_pairs - i.self_intersecting_pairs_touching);
+  } else {
+    r.add("intersecting_pairs", "not computed");
+    r.add("touching_pairs", "not computed");
+    r.add("crossing_pairs", "not computed");
+  }
+  r.add("components", i.connected_components);
+  r.add("boundary_edges", i.boundary_edges);
+  r.add("area", i.area);
+  r.add("volume", i.volume);
+  r.add("valid", CGAL::is_valid_polygon_mesh(m));
+  r.add("closed", CGAL::is_closed(m));
+}
+
+// MREPAIR_BENCH_TIME_LIMIT (whole seconds, > 0) or 0 (no bound).
+unsigned time_limit()
+{
+  const char* s = std::getenv("MREPAIR_BENCH_TIME_LIMIT");
+  if (!s) return 0;
+  const long v = std::strtol(s, nullptr, 10);
+  return v > 0 ? static_cast<unsigned>(v) : 0u;
+}
+
+// Times `call(mesh)` (wall and CPU), under the optional time bound.
+template <typename Call>
+void timed(Mesh& m, Measurement& out, Call&& call)
+{
+  const unsigned bound = time_limit();
+  CGAL::Real_timer t;
+  const double cpu0 = cpu_seconds();
+  if (bound) alarm(bound);
+  t.start();
+  call(m);
+  t.stop();
+  if (bound) alarm(0);
+  out.seconds = t.time();
+  out.result.add("cpu_seconds", cpu_seconds() - cpu0);
+}
+
+Measurement run_mrepair(const std::string& input)
+{
+  Mesh m = load(input);
+  Measurement out;
+  table(m, out.before);
+  mrepair::Intersection_repair_result r;
+  timed(m, out, [&](Mesh& mesh) { r = mrepair::resolve_intersections(mesh); });
+  out.status = mrepair::to_string(r.status);
+  r.to_report(out.result);
+  m.collect_garbage();
+  table(m, out.after);
+  return out;
+}
+
+Measurement run_cgal(const std::string& input)
+{
+  Mesh m = load(input);
+  Measurement out;
+  table(m, out.before);
+  bool fixed = false;
+  timed(m, out, [&](Mesh& mesh) { fixed = PMP::experimental::remove_self_intersections(mesh); });
+  out.status = fixed ? "ok" : "not all removed";
+  out.result.add("returned", fixed);
+  m.collect_garbage();
+  table(m, out.after);
+  return out;
+}
+
+mrepair::bench::Task_registrar reg{
+    {"resolve-intersections",
+     "crossings of a triangle mesh: resolve_intersections vs "
+     "PMP::experimental::remove_self_intersections (env MREPAIR_BENCH_TIME_LIMIT=seconds bounds each call)",
+     {{"mrepair::resolve", run_mrepair},
+      {"CGAL remove_self_int", run_cgal}}}};
+
+} // namespace

@@ -1,0 +1,486 @@
+// Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
+// Solid repair (`resolve_intersections`, doc/solids.md): closed outward
+// shells that cross, touch or contain one another become their union, a
+// shell crossing itself is repaired locally, cavities (inward shells) stay.
+// Shapes built in code: boxes, UV spheres, a torus. Every output is checked
+// with CGAL's exact self-intersection test, and no input point may be lost:
+// each lies on the output surface or inside it. Typed over Surface_mesh and
+// Polyhedron_3.
+#include "fixtures.h"
+
+#include <mrepair/fill_small_holes.h>
+#include <mrepair/repair.h>
+#include <mrepair/report.h>
+#include <mrepair/resolve_intersections.h>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/version.h>
+#if CGAL_VERSION_NR >= 1060000000
+#include <CGAL/AABB_traits_3.h>
+#else
+#include <CGAL/AABB_traits.h>
+#endif
+#include <CGAL/Bbox_3.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace mrepair_test;
+namespace MP = mrepair::parameters;
+namespace PMP = CGAL::Polygon_mesh_processing;
+using mrepair::Status;
+
+const double pi = 3.14159265358979323846;
+
+// ---- shapes ------------------------------------------------------------------
+
+// the box [x0,x1] x [y0,y1] x [z0,z1]: the fixture's unit cube (12 outward
+// triangles over 8 corners) with its corners moved.
+Soup box(double x0, double x1, double y0, double y1, double z0, double z1)
+{
+  Soup s = cube(1.0);
+  for (Point& p : s.points)
+    p = Point(p.x() == 0 ? x0 : x1, p.y() == 0 ? y0 : y1, p.z() == 0 ? z0 : z1);
+  return s;
+}
+
+// index in `uv_sphere(nlat, nlon, ...)` of the vertex of ring k, column j
+// (mod nlon): ring 0 is the north pole, ring nlat the south pole.
+std::size_t uv_index(std::size_t nlat, std::size_t nlon, std::size_t k, std::size_t j)
+{
+  if (k == 0) return 0;
+  if (k == nlat) return 1 + (nlat - 1) * nlon;
+  return 1 + (k - 1) * nlon + j % nlon;
+}
+
+// UV sphere of `radius` about `c`: poles on the z axis, nlat bands of nlon
+// columns, the polar bands as fans; closed, outward.
+Soup uv_sphere(std::size_t nlat, std::size_t nlon, double radius, Point c = Point(0, 0, 0))
+{
+  Soup s;
+  s.points.emplace_back(c.x(), c.y(), c.z() + radius);
+  for (std::size_t k = 1; k < nlat; ++k) {
+    const double t = pi * double(k) / double(nlat);
+    for (std::size_t j = 0; j < nlon; ++j) {
+      const double f = 2 * pi * double(j) / double(nlon);
+      s.points.emplace_back(c.x() + radius * std::sin(t) * std::cos(f),
+                            c.y() + radius * std::sin(t) * std::sin(f), c.z() + radius * std::cos(t));
+    }
+  }
+  s.points.emplace_back(c.x(), c.y(), c.z() - radius);
+  auto id = [&](std::size_t k, std::size_t j) { return uv_index(nlat, nlon, k, j); };
+  for (std::size_t j = 0; j < nlon; ++j) s.polygons.push_back({id(0, 0), id(1, j), id(1, j + 1)});
+  for (std::size_t k = 1; k + 1 < nlat; ++k)
+    for (std::size_t j = 0; j < nlon; ++j) {
+      const std::size_t a = id(k, j), b = id(k + 1, j), cc = id(k + 1, j + 1), d = id(k, j + 1);
+      s.polygons.push_back({a, b, cc});
+      s.polygons.push_back({a, cc, d});
+    }
+  for (std::size_t j = 0; j < nlon; ++j)
+    s.polygons.push_back({id(nlat, 0), id(nlat - 1, j + 1), id(nlat - 1, j)});
+  return s;
+}
+
+// torus about the z axis: tube of radius r around the circle of radius R,
+// nu x nv quads split in two; closed, outward, genus 1.
+Soup torus(double R, double r, std::size_t nu, std::size_t nv)
+{
+  Soup s;
+  for (std::size_t i = 0; i < nu; ++i) {
+    const double u = 2 * pi * double(i) / double(nu);
+    for (std::size_t j = 0; j < nv; ++j) {
+      const double v = 2 * pi * double(j) / double(nv);
+      s.points.emplace_back((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u),
+                            r * std::sin(v));
+    }
+  }
+  auto id = [&](std::size_t i, std::size_t j) { return (i % nu) * nv + j % nv; };
+  for (std::size_t i = 0; i < nu; ++i)
+    for (std::size_t j = 0; j < nv; ++j) {
+      const std::size_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      s.polygons.push_back({a, b, c});
+      s.polygons.push_back({a, c, d});
+    }
+  return s;
+}
+
+// `s` with every polygon reversed (normals inward).
+Soup reversed(Soup s)
+{
+  for (Polygon& p : s.polygons) std::reverse(p.begin(), p.end());
+  return s;
+}
+
+// ---- checks ------------------------------------------------------------------
+
+std::string describe(const mrepair::Intersection_repair_result& r)
+{
+  mrepair::Report report;
+  r.to_report(report.section("resolve_intersections"));
+  return report.to_text();
+}
+
+template <class Mesh>
+std::size_t components(const Mesh& m)
+{
+  auto fcc = get(CGAL::dynamic_face_property_t<std::size_t>(), m);
+  return PMP::connected_components(m, fcc);
+}
+
+template <class Mesh>
+std::size_t border_halfedges(const Mesh& m)
+{
+  std::size_t n = 0;
+  for (auto h : halfedges(m))
+    if (is_border(h, m)) ++n;
+  return n;
+}
+
+template <class Mesh>
+std::size_t vertex_count(const Mesh& m)
+{
+  return static_cast<std::size_t>(vertices(m).size());
+}
+
+// a valid triangle mesh, closed when `closed`, without a self-intersection
+// (CGAL's exact test).
+template <class Mesh>
+void expect_sound_surface(const Mesh& m, bool closed)
+{
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  const bool triangles = CGAL::is_triangle_mesh(m);
+  EXPECT_TRUE(triangles);
+  if (closed) { EXPECT_TRUE(CGAL::is_closed(m)) << border_halfedges(m) << " border halfedges"; }
+  if (triangles) { EXPECT_FALSE(PMP::does_self_intersect(m)); }
+}
+
+// ... and the call says it left no crossing.
+template <class Mesh>
+void expect_resolved(const Mesh& m, const mrepair::Intersection_repair_result& r, bool closed)
+{
+  EXPECT_EQ(r.status, Status::ok) << describe(r);
+  EXPECT_TRUE(r.intersection_free) << describe(r);
+  EXPECT_EQ(r.crossing_pairs_after, 0u);
+  expect_sound_surface(m, closed);
+}
+
+// The input points that are neither on the surface of `out` (closer than
+// 1e-6 of the input's box diagonal) nor inside it (when `out` is closed),
+// `skip` aside; `first` describes the first of them.
+template <class Mesh>
+std::size_t points_lost(const Mesh& out, const std::vector<Point>& input,
+                        const std::function<bool(const Point&)>& skip, std::string* first = nullptr)
+{
+  using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
+#if CGAL_VERSION_NR >= 1060000000
+  using Traits = CGAL::AABB_traits_3<K, Primitive>;
+#else
+  using Traits = CGAL::AABB_traits<K, Primitive>;
+#endif
+  using Tree = CGAL::AABB_tree<Traits>;
+  using Side = CGAL::Side_of_triangle_mesh<Mesh, K>;
+  CGAL::Bbox_3 box;
+  for (const Point& p : input) box += p.bbox();
+  const double dx = box.xmax() - box.xmin(), dy = box.ymax() - box.ymin(), dz = box.zmax() - box.zmin();
+  const double tol = 1e-6 * std::sqrt(dx * dx + dy * dy + dz * dz);
+  std::size_t lost = 0;
+  if (faces(out).empty()) {
+    for (const Point& p : input) lost += !skip(p);
+    if (first && lost) *first = "the output has no face";
+    return lost;
+  }
+  Tree tree(faces(out).first, faces(out).second, out);
+  tree.accelerate_distance_queries();
+  std::unique_ptr<Side> side;
+  if (CGAL::is_closed(out)) side.reset(new Side(out));
+  for (const Point& p : input) {
+    if (skip(p)) continue;
+    const double d2 = tree.squared_distance(p);
+    if (d2 <= tol * tol) continue;
+    if (side && (*side)(p) != CGAL::ON_UNBOUNDED_SIDE) continue;
+    if (++lost == 1 && first) {
+      std::ostringstream o;
+      o << "(" << p << ") at distance " << std::sqrt(d2) << " outside the output";
+      *first = o.str();
+    }
+  }
+  return lost;
+}
+
+template <class Mesh>
+void expect_no_point_lost(const Mesh& out, const std::vector<Point>& input,
+                          const std::function<bool(const Point&)>& skip = [](const Point&) { return false; })
+{
+  std::string first;
+  EXPECT_EQ(points_lost(out, input, skip, &first), 0u) << "first: " << first;
+}
+
+template <class Mesh>
+void expect_volume(const Mesh& m, double expected)
+{
+  const double v = PMP::volume(m);
+  EXPECT_NEAR(v, expected, 1e-9 * std::abs(expected)) << "volume " << v;
+}
+
+template <class Config>
+class Solids : public ::testing::Test
+{};
+TYPED_TEST_SUITE(Solids, Mesh_configs);
+
+// 1. Two unit cubes, the second moved by 0.5 along every axis: each passes
+// through the other; the union is one closed solid of volume 2 - 1/8.
+TYPED_TEST(Solids, two_crossing_cubes_become_their_union)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup s = merged(cube(), translated(cube(), 0.5, 0.5, 0.5));
+  Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  expect_resolved(m, r, true);
+  EXPECT_EQ(components(m), 1u);
+  EXPECT_EQ(r.shells_merged, 2u) << describe(r);
+  EXPECT_EQ(r.solids_from_unions, 1u);
+  expect_volume(m, 2. - 0.125);
+  expect_no_point_lost(m, s.points);
+}
+
+// 2. Two unit cubes sharing a face (the second at x + 1, its own vertices):
+// one closed box of volume 2.
+TYPED_TEST(Solids, cubes_sharing_a_face_become_one_box)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup s = merged(cube(), translated(cube(), 1., 0., 0.));
+  Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  expect_resolved(m, r, true);
+  EXPECT_EQ(components(m), 1u) << describe(r);
+  expect_volume(m, 2.);
+  expect_no_point_lost(m, s.points);
+}
+
+// 3. A box through the tube of a torus: one solid of genus 1.
+TYPED_TEST(Solids, box_through_a_torus_becomes_one_solid)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup s = merged(box(-0.3, 1.8, -0.3, 0.3, -1., 1.), torus(1.5, 0.4, 24, 12));
+  Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  expect_resolved(m, r, true);
+  EXPECT_EQ(components(m), 1u) << describe(r);
+  expect_no_point_lost(m, s.points);
+}
+
+// 4. Concentric spheres of radii 2 and 1. Both outward: the inner one adds
+// nothing to the solid and goes into the union (the outer sphere stays).
+// The inner one inward: a cavity, kept, the mesh unchanged.
+TYPED_TEST(Solids, sphere_inside_a_sphere_is_absorbed_unless_it_is_a_cavity)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup outer = uv_sphere(16, 32, 2.), inner = uv_sphere(16, 32, 1.);
+  const Mesh outer_alone = to_mesh<Mesh>(outer);
+  const Mesh inner_alone = to_mesh<Mesh>(inner);
+  const double v_outer = PMP::volume(outer_alone), v_inner = PMP::volume(inner_alone);
+  {
+    SCOPED_TRACE("both outward");
+    const Soup s = merged(outer, inner);
+    Mesh m = to_mesh<Mesh>(s);
+    const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+    EXPECT_EQ(r.crossing_pairs_before, 0u);
+    expect_resolved(m, r, true);
+    EXPECT_EQ(components(m), 1u) << describe(r);
+    EXPECT_EQ(face_count(m), face_count(outer_alone));
+    EXPECT_EQ(r.nested_shells_merged, 1u) << describe(r);
+    expect_volume(m, v_outer);
+    expect_no_point_lost(m, s.points);
+  }
+  {
+    SCOPED_TRACE("inner inward: a cavity");
+    const Soup s = merged(outer, reversed(inner));
+    Mesh m = to_mesh<Mesh>(s);
+    const std::size_t faces_before = face_count(m);
+    const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+    expect_resolved(m, r, true);
+    EXPECT_EQ(components(m), 2u) << describe(r);
+    EXPECT_EQ(face_count(m), faces_before);
+    EXPECT_EQ(r.shells_merged, 0u);
+    expect_volume(m, v_outer - v_inner);
+    expect_no_point_lost(m, s.points);
+  }
+}
+
+// 5. Ten boards in a frame: five planks side by side, each overlapping the
+// next (staggered in height), and five crosswise boards laid into them.
+// One closed solid.
+TYPED_TEST(Solids, ten_overlapping_boards_become_one_solid)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  double volumes = 0.;
+  auto add = [&](double x0, double x1, double y0, double y1, double z0, double z1) {
+    s = merged(s, box(x0, x1, y0, y1, z0, z1));
+    volumes += (x1 - x0) * (y1 - y0) * (z1 - z0);
+  };
+  for (int i = 0; i < 5; ++i) add(0.02 * i, 6 + 0.03 * i, 1.0 * i, 1.0 * i + 1.3, 0.05 * i, 0.5 + 0.05 * i);
+  for (int j = 0; j < 5; ++j)
+    add(0.3 + 1.3 * j, 1.1 + 1.31 * j, -0.2 + 0.01 * j, 5.5 + 0.02 * j, 0.4 + 0.03 * j, 1.0 + 0.03 * j);
+  Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  expect_resolved(m, r, true);
+  EXPECT_EQ(components(m), 1u) << describe(r);
+  EXPECT_EQ(r.shells_merged, 10u) << describe(r);
+  const double v = CGAL::is_closed(m) ? PMP::volume(m) : 0.;
+  EXPECT_GT(v, 6. * 1.3 * 0.5);  // more than one plank
+  EXPECT_LT(v, volumes);          // less than the boards counted apart
+  expect_no_point_lost(m, s.points);
+}
+
+// 6. A closed UV sphere folded through itself: its north pole (and, second
+// case, the first ring around it) pushed down through the south cap. The
+// local repair removes the crossing faces (and rings around them) and
+// refills the holes. The points of both caps are where the repair removes
+// and refills (flat patches under the sphere's curvature): only the points
+// of the middle band (|z| < 0.7) must stay on or inside the output.
+TYPED_TEST(Solids, shell_folded_through_itself_is_repaired_locally)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const std::size_t nlat = 16, nlon = 32;
+  for (std::size_t rings_pushed : {0, 1}) {
+    SCOPED_TRACE(rings_pushed == 0 ? "pole pushed through" : "pole and first ring pushed through");
+    Soup s = uv_sphere(nlat, nlon, 1.);
+    const std::size_t last = rings_pushed == 0 ? 0 : uv_index(nlat, nlon, 1, nlon - 1);
+    for (std::size_t i = 0; i <= last; ++i) s.points[i] = Point(s.points[i].x(), s.points[i].y(), s.points[i].z() - 2.3);
+    Mesh m = to_mesh<Mesh>(s);
+    ASSERT_TRUE(PMP::does_self_intersect(m));
+    const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+    EXPECT_GT(r.crossing_pairs_before, 0u);
+    EXPECT_GT(r.local_rounds, 0u);
+    EXPECT_GT(r.local_faces_removed, 0u);
+    expect_resolved(m, r, true);
+    EXPECT_EQ(r.local_holes_left_open, 0u) << describe(r);
+    expect_no_point_lost(m, s.points, [](const Point& p) { return std::abs(p.z()) >= 0.7; });
+  }
+}
+
+// 7. A fine sphere with a fold made by moving one equator vertex past its
+// neighbours (2.5 columns along the equator, slightly north, on the sphere)
+// and a hole of two faces beside it. After resolve_intersections and
+// fill_small_holes: closed and without crossing. Points within 0.6 of the
+// moved vertex are in the region the repair removes and refills.
+TYPED_TEST(Solids, small_hole_beside_a_crossing_is_closed)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const std::size_t nlat = 32, nlon = 64, k = 16, j = 10;
+  Soup s = uv_sphere(nlat, nlon, 1.);
+  const std::size_t v = uv_index(nlat, nlon, k, j);
+  const Point old = s.points[v];
+  const double t = pi / 2 - 0.3 * pi / double(nlat), f = 2 * pi * (double(j) + 2.5) / double(nlon);
+  s.points[v] = Point(std::sin(t) * std::cos(f), std::sin(t) * std::sin(f), std::cos(t));
+  // the two triangles of the quad below the equator, two columns past the new position
+  const std::size_t a = uv_index(nlat, nlon, k, j + 4), b = uv_index(nlat, nlon, k + 1, j + 4),
+                    c = uv_index(nlat, nlon, k + 1, j + 5), d = uv_index(nlat, nlon, k, j + 5);
+  const std::size_t polygons_before = s.polygons.size();
+  s.polygons.erase(std::remove_if(s.polygons.begin(), s.polygons.end(),
+                                  [&](const Polygon& p) {
+                                    return p == Polygon{a, b, c} || p == Polygon{a, c, d};
+                                  }),
+                   s.polygons.end());
+  ASSERT_EQ(s.polygons.size() + 2, polygons_before);
+  Mesh m = to_mesh<Mesh>(s);
+  ASSERT_FALSE(CGAL::is_closed(m));
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  expect_resolved(m, r, false);
+  const mrepair::Hole_filling_result h = mrepair::fill_small_holes(m);
+  EXPECT_EQ(h.status, Status::ok) << "holes found " << h.holes_found << ", filled " << h.holes_filled
+                                  << ", open " << h.open_holes.size();
+  expect_sound_surface(m, true);
+  EXPECT_EQ(components(m), 1u);
+  expect_no_point_lost(m, s.points, [&](const Point& p) {
+    return CGAL::squared_distance(p, old) < 0.36;
+  });
+}
+
+// 8. Two tetrahedra glued on a doubled face (the face listed once for
+// each): the whole repair removes the inner wall and leaves the double
+// pyramid, 6 faces, closed.
+TYPED_TEST(Solids, tetrahedra_on_a_doubled_face_lose_the_wall)
+{
+  using Mesh = typename TypeParam::Mesh;
+  std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0.3, 0.3, 1),
+                               Point(0.3, 0.3, -1)};
+  std::vector<Polygon> polygons = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3},
+                                   {0, 1, 2}, {0, 4, 1}, {1, 4, 2}, {2, 4, 0}};
+  const std::vector<Point> input = points;
+  Mesh m;
+  const mrepair::Repair_result r = mrepair::repair_polygon_soup(points, polygons, m, mrepair::Repair_options());
+  EXPECT_TRUE(r.failed_stage.empty()) << r.message;
+  EXPECT_TRUE(mrepair::succeeded(r.status)) << r.message;
+  EXPECT_EQ(face_count(m), 6u);
+  expect_sound_surface(m, true);
+  EXPECT_EQ(components(m), 1u);
+  expect_no_point_lost(m, input);
+}
+
+// 9. Merging switched off: the crossing cubes stay as they are, and the
+// result says why their crossings are left.
+TYPED_TEST(Solids, merging_switched_off_keeps_both_shells)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup s = merged(cube(), translated(cube(), 0.5, 0.5, 0.5));
+  Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Intersection_repair_result r =
+      mrepair::resolve_intersections(m, MP::merge_overlapping_shells(false, MP::max_local_rounds(0)));
+  EXPECT_EQ(r.status, Status::partial) << describe(r);
+  EXPECT_FALSE(r.intersection_free);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  EXPECT_EQ(r.crossing_pairs_after, r.crossing_pairs_before);
+  EXPECT_EQ(face_count(m), 24u);
+  EXPECT_EQ(components(m), 2u);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(CGAL::is_triangle_mesh(m));
+  EXPECT_TRUE(CGAL::is_closed(m));
+  const auto& reasons = r.crossing_left_by_reason;
+  const bool kept_separate =
+      std::any_of(reasons.begin(), reasons.end(), [](const std::pair<std::string, std::size_t>& x) {
+        return x.first == "shells_kept_separate" && x.second > 0;
+      });
+  EXPECT_TRUE(kept_separate) << describe(r);
+  expect_no_point_lost(m, s.points);
+}
+
+// 10. A mesh without crossings and without nested shells is not changed.
+TYPED_TEST(Solids, sphere_without_crossings_is_unchanged)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup s = uv_sphere(16, 32, 1.);
+  Mesh m = to_mesh<Mesh>(s);
+  const std::size_t faces_before = face_count(m), vertices_before = vertex_count(m);
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_EQ(r.crossing_pairs_before, 0u);
+  expect_resolved(m, r, true);
+  EXPECT_EQ(face_count(m), faces_before);
+  EXPECT_EQ(vertex_count(m), vertices_before);
+  EXPECT_EQ(r.local_rounds, 0u);
+  EXPECT_EQ(r.shells_merged, 0u);
+  expect_no_point_lost(m, s.points);
+}
+
+} // namespace
