@@ -7,13 +7,38 @@
 #define MREPAIR_BENCH_H
 
 #include <mrepair/report.h>
+#include <mrepair/status.h>
+
+#include <sys/resource.h>
 
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace mrepair {
 namespace bench {
+
+/// CPU seconds (all threads, user + system) used by this process so far: on a
+/// shared machine the wall time of a parallel call says little alone.
+inline double cpu_seconds()
+{
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  return double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+         1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
+
+/// reads `path` into a mesh (io.h's reader); throws when it holds no face.
+template <typename Mesh, typename Read>
+Mesh load_mesh(const std::string& path, Read&& read)
+{
+  Mesh m;
+  const auto r = read(path, m);
+  if (r.status != mrepair::Status::ok || faces(m).size() == 0)
+    throw std::runtime_error("cannot read " + path + " as a polygon mesh: " + r.message);
+  return m;
+}
 
 /// what a variant measured: its own timed section and reports.
 struct Measurement

@@ -44,23 +44,11 @@ using Mesh = CGAL::Surface_mesh<Point>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 using mrepair::bench::Measurement;
 
-// CPU seconds (all threads, user + system) used by this process so far: on a
-// shared machine the wall time of a parallel call says little alone.
-double cpu_seconds()
-{
-  rusage ru{};
-  getrusage(RUSAGE_SELF, &ru);
-  return double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
-         1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
-}
 
 Mesh load(const std::string& path)
 {
-  Mesh m;
-  mrepair::Io_result r = mrepair::read_polygon_mesh(path, m);
-  if (r.status != mrepair::Status::ok || faces(m).size() == 0)
-    throw std::runtime_error("cannot read " + path + " as a polygon mesh: " + r.message);
-  return m;
+  return mrepair::bench::load_mesh<Mesh>(
+      path, [](const std::string& f, Mesh& m) { return mrepair::read_polygon_mesh(f, m); });
 }
 
 Measurement run_mrepair(const std::string& input)
@@ -68,12 +56,12 @@ Measurement run_mrepair(const std::string& input)
   Mesh m = load(input);
   Measurement out;
   CGAL::Real_timer t;
-  const double cpu0 = cpu_seconds();
+  const double cpu0 = mrepair::bench::cpu_seconds();
   t.start();
   mrepair::Inspection_report r = mrepair::inspect(m);
   t.stop();
   out.seconds = t.time();
-  out.result.add("cpu_seconds", cpu_seconds() - cpu0);
+  out.result.add("cpu_seconds", mrepair::bench::cpu_seconds() - cpu0);
   out.status = mrepair::to_string(r.status);
   r.to_report(out.after);
   return out;
@@ -95,7 +83,7 @@ Measurement run_cgal(const std::string& input)
   const std::size_t max_hole = 100, min_component = 400;
 
   CGAL::Real_timer t;
-  const double cpu0 = cpu_seconds();
+  const double cpu0 = mrepair::bench::cpu_seconds();
   t.start();
   in.add("vertices", vertices(m).size());
   in.add("faces", faces(m).size());
@@ -246,7 +234,7 @@ Measurement run_cgal(const std::string& input)
   q.add("volume", closed && triangle_mesh ? PMP::volume(m) : std::numeric_limits<double>::quiet_NaN());
   t.stop();
   out.seconds = t.time();
-  out.result.add("cpu_seconds", cpu_seconds() - cpu0);
+  out.result.add("cpu_seconds", mrepair::bench::cpu_seconds() - cpu0);
   return out;
 }
 

@@ -44,22 +44,11 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 namespace MP = mrepair::parameters;
 using mrepair::bench::Measurement;
 
-// CPU seconds (all threads, user + system) used by this process so far.
-double cpu_seconds()
-{
-  rusage ru{};
-  getrusage(RUSAGE_SELF, &ru);
-  return double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
-         1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
-}
 
 Mesh load(const std::string& path)
 {
-  Mesh m;
-  mrepair::Io_result r = mrepair::read_polygon_mesh(path, m);
-  if (r.status != mrepair::Status::ok || faces(m).size() == 0)
-    throw std::runtime_error("cannot read " + path + " as a polygon mesh: " + r.message);
-  return m;
+  return mrepair::bench::load_mesh<Mesh>(
+      path, [](const std::string& f, Mesh& m) { return mrepair::read_polygon_mesh(f, m); });
 }
 
 // The same figures for every variant, before and after.
@@ -99,14 +88,14 @@ void timed(Mesh& m, Measurement& out, Call&& call)
 {
   const unsigned bound = time_limit();
   CGAL::Real_timer t;
-  const double cpu0 = cpu_seconds();
+  const double cpu0 = mrepair::bench::cpu_seconds();
   if (bound) alarm(bound);
   t.start();
   call(m);
   t.stop();
   if (bound) alarm(0);
   out.seconds = t.time();
-  out.result.add("cpu_seconds", cpu_seconds() - cpu0);
+  out.result.add("cpu_seconds", mrepair::bench::cpu_seconds() - cpu0);
 }
 
 Measurement run_mrepair(const std::string& input)

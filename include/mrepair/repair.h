@@ -454,7 +454,8 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
       out, MP::max_hole_vertices(
                hole_n, MP::min_component_faces(
                            comp_n, MP::spike_angle(inspect_spike, MP::count_self_intersections(count_again)))));
-  if (options.count_self_intersections && crossings_known) {
+  // (then even without count_self_intersections: the step counted anyway)
+  if (crossings_known) {
     result.after.self_intersections_counted = true;
     result.after.self_intersecting_pairs =
         result.intersections.crossing_pairs_after + result.intersections.touching_pairs_after;

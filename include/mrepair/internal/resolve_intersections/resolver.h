@@ -56,6 +56,7 @@ struct Resolver_counts
   std::size_t union_faces_removed = 0, union_faces_added = 0;
   std::size_t unions_failed = 0;
   std::vector<std::pair<std::string, std::size_t>> left_by_reason;  // crossing pairs left
+  std::vector<std::string> unions;  // per union: the shells' faces (nested ones marked) -> the result's
 };
 
 template <typename PolygonMesh, typename VertexPointMap>
@@ -380,10 +381,13 @@ private:
         ++counts.unions_failed;
         continue;
       }
+      std::string what = std::to_string(merged.size()) + " shells of";
       for (std::size_t c : merged) {
         doomed.insert(doomed.end(), shells[c].faces.begin(), shells[c].faces.end());
         counts.nested_shells_merged += nested[c];
+        what += " " + std::to_string(shells[c].faces.size()) + (nested[c] ? " (nested)" : "");
       }
+      counts.unions.push_back(what + " faces -> " + std::to_string(internal::face_count(acc)) + " faces");
       counts.shells_merged += merged.size();
       ++counts.solids_from_unions;
       results.push_back(std::move(acc));

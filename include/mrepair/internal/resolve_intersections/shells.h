@@ -15,7 +15,9 @@
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <map>
 #include <vector>
@@ -57,6 +59,7 @@ std::vector<Shell<PolygonMesh>> label_shells(const PolygonMesh& pm, VertexPointM
     bool origin_set = false;
     Vec3 origin{{0, 0, 0}};
     double v6 = 0.;
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     while (!stack.empty()) {
       const face_descriptor f = stack.back();
       stack.pop_back();
@@ -65,7 +68,10 @@ std::vector<Shell<PolygonMesh>> label_shells(const PolygonMesh& pm, VertexPointM
       int k = 0;
       for (halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, pm), pm)) {
         const Vec3 q = point(vpm, target(h, pm));
-        s.box += CGAL::Bbox_3(q[0], q[1], q[2], q[0], q[1], q[2]);
+        for (int d = 0; d < 3; ++d) {
+          lo[d] = std::min(lo[d], q[d]);
+          hi[d] = std::max(hi[d], q[d]);
+        }
         if (k < 3) p[k] = q;
         ++k;
         const halfedge_descriptor o = opposite(h, pm);
@@ -88,6 +94,7 @@ std::vector<Shell<PolygonMesh>> label_shells(const PolygonMesh& pm, VertexPointM
       v6 += dot(sub(p[0], origin), cross(sub(p[1], origin), sub(p[2], origin)));
     }
     s.volume = v6 / 6.;
+    s.box = CGAL::Bbox_3(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
   }
   return shells;
 }
