@@ -413,7 +413,8 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
     Report& rr = report.section("resolve_intersections");
     ir.to_report(rr);
     const bool changed = ir.local_faces_removed + ir.local_faces_added + ir.union_faces_removed > 0;
-    crossings_known = succeeded(ir.status) && !changed;
+    // its last count is of its output (taken after its last change)
+    crossings_known = succeeded(ir.status);
     if (changed && succeeded(ir.status)) {
       // the profile's hole limit and way of filling (clean_scan_mesh.h)
       const std::size_t limit = hole_given ? hole_n : cad ? defaults::max_cad_hole_vertices : hole_n;
