@@ -645,3 +645,7 @@ TEST(Keeps_model_cli, pentagon_obj_terminates_and_accounts_for_every_face)
 }
 
 }  // namespace
+
+// Issue 37: the solid repair's cases (typed, each output checked with CGAL's
+// does_self_intersect).
+#include "solids_cases.h"

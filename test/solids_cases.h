@@ -6,6 +6,11 @@
 // with CGAL's exact self-intersection test, and no input point may be lost:
 // each lies on the output surface or inside it. Typed over Surface_mesh and
 // Polyhedron_3.
+// Included by test_keeps_model.cpp: one translation unit less to compile
+// (CGAL's templates are instantiated there already).
+#ifndef MREPAIR_TEST_SOLIDS_CASES_H
+#define MREPAIR_TEST_SOLIDS_CASES_H
+
 #include "fixtures.h"
 
 #include <mrepair/fill_small_holes.h>
@@ -39,7 +44,7 @@
 #include <string>
 #include <vector>
 
-namespace {
+namespace solids_cases {
 
 using namespace mrepair_test;
 namespace MP = mrepair::parameters;
@@ -483,4 +488,6 @@ TYPED_TEST(Solids, sphere_without_crossings_is_unchanged)
   expect_no_point_lost(m, s.points);
 }
 
-} // namespace
+} // namespace solids_cases
+
+#endif // MREPAIR_TEST_SOLIDS_CASES_H
