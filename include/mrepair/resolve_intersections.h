@@ -124,7 +124,8 @@ struct Intersection_repair_result
 ///     cross the surface is taken back; an aborted fill grows by a ring, twice)
 ///   pairs <- the crossing pairs left
 ///   a round that leaves more border loops, another number of components, no
-///     fewer crossings, or removes over a third of the shells it touches, is
+///     fewer crossings, more vertices with an edge folded beyond the spike
+///     angle around its region, or removes over a third of the shells it touches, is
 ///     undone (the mesh rebuilt from a copy) and ends the local repair
 /// if merge_overlapping_shells:
 ///   clusters <- closed outward shells joined by crossing pairs, and each
