@@ -488,6 +488,34 @@ TYPED_TEST(Solids, sphere_without_crossings_is_unchanged)
   expect_no_point_lost(m, s.points);
 }
 
+// Bad input gets a status and leaves the mesh as it was: no face, a NaN
+// corner, a quad (not a triangle mesh).
+TYPED_TEST(Solids, bad_input_gets_a_status_and_stays_untouched)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Mesh empty;
+  EXPECT_EQ(mrepair::resolve_intersections(empty).status, Status::empty_input);
+  Soup s = box(0, 1, 0, 1, 0, 1);
+  Soup t = box(0.5, 1.5, 0.5, 1.5, 0.5, 1.5);
+  for (Polygon p : t.polygons) {
+    for (auto& i : p) i += s.points.size();
+    s.polygons.push_back(p);
+  }
+  s.points.insert(s.points.end(), t.points.begin(), t.points.end());
+  s.points[3] = Point(std::nan(""), 0, 0);
+  Mesh m = to_mesh<Mesh>(s);
+  const std::size_t f0 = faces(m).size();
+  EXPECT_EQ(mrepair::resolve_intersections(m).status, Status::non_finite_input);
+  EXPECT_EQ(faces(m).size(), f0);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  Soup q;
+  q.points = {Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(0, 1, 0)};
+  q.polygons = {Polygon{0, 1, 2, 3}};
+  Mesh quad = to_mesh<Mesh>(q);
+  EXPECT_EQ(mrepair::resolve_intersections(quad).status, Status::invalid_mesh);
+  EXPECT_EQ(faces(quad).size(), 1u);
+}
+
 } // namespace solids_cases
 
 #endif // MREPAIR_TEST_SOLIDS_CASES_H
