@@ -192,7 +192,7 @@ mrepair::bench::Measurement run_cgal(const std::string& path, bool experimental)
   bool deg_ok = true, si_ok = true;
   if (experimental) {
     t4.start();
-    deg_ok = PMP::experimental::remove_almost_degenerate_faces(
+    deg_ok = mrepair::bench::remove_almost_degenerate_faces_with_cgal(
         m, std::cos(160.0 / 180.0 * CGAL_PI), 4.0, 0.5 * mean);
     t4.stop();
     t5.start();

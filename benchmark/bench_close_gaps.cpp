@@ -25,9 +25,9 @@
 #include <mrepair/internal/close_gaps/boundary_grid.h>
 #include <mrepair/io.h>
 
+#include <mrepair/internal/cgal_compat.h>
+
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/internal/Snapping/snap.h>
@@ -141,7 +141,7 @@ std::size_t t_junctions(const Mesh& m, double tol)
 
 double one_sided(const Mesh& a, const Mesh& b)
 {
-  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
+  using Tree = mrepair::internal::Aabb_tree<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>;
   Tree tree(faces(b).first, faces(b).second, b);
   tree.accelerate_distance_queries();
   double d = 0;

@@ -337,8 +337,8 @@ mrepair::bench::Measurement run_cgal(const std::string& input, bool scan)
       return sum / double(std::max<std::size_t>(1, m.number_of_edges()));
     });
     out.result.add("remove_almost_degenerate_faces_ok", phase("remove_almost_degenerate_faces", [&] {
-      return PMP::experimental::remove_almost_degenerate_faces(m, std::cos(160.0 / 180.0 * CGAL_PI), 4.0,
-                                                               0.5 * mean);
+      return mrepair::bench::remove_almost_degenerate_faces_with_cgal(m, std::cos(160.0 / 180.0 * CGAL_PI),
+                                                                      4.0, 0.5 * mean);
     }));
     out.result.add("remove_self_intersections_ok", phase("remove_self_intersections", [&] {
       return PMP::experimental::remove_self_intersections(m);

@@ -5,6 +5,8 @@
 // by side.
 #include "bench.h"
 
+#include <CGAL/version.h>
+
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -201,7 +203,7 @@ int main(int argc, char** argv)
   auto cell = [w](const std::string& s) {
     return s.size() >= w ? s.substr(0, w - 1) + " " : s + std::string(w - s.size(), ' ');
   };
-  std::cout << "task: " << task->name << "   input: " << input << "\n";
+  std::cout << "task: " << task->name << "   input: " << input << "   CGAL " << CGAL_VERSION_STR << "\n";
   std::cout << std::string(w0, ' ');
   for (auto* v : chosen) std::cout << cell(v->name);
   std::cout << "\n" << std::left << std::setw(static_cast<int>(w0)) << "time [s]";

@@ -1,9 +1,14 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
-// Task "remesh": mrepair::isotropic_remesh (sequential and parallel) beside CGAL
-// 5.5 PMP::isotropic_remeshing, same target length, same iterations, sharp
+// Task "remesh": mrepair::isotropic_remesh (sequential and parallel) beside
+// CGAL's PMP::isotropic_remeshing, same target length, same iterations, sharp
 // edges from PMP::detect_sharp_edges given to CGAL as constrained edges (the
 // same dihedral angle is mrepair's feature angle). Task "remesh_adaptive":
-// adaptive_remesh beside uniform mrepair remeshing at the same face count.
+// adaptive_remesh beside uniform mrepair remeshing at the same face count and,
+// built on CGAL 6, beside PMP::isotropic_remeshing with CGAL's
+// Adaptive_sizing_field (curvature-adaptive after Dunyach et al. as well): the
+// same tolerance, the same length clamps (mrepair's defaults: the tolerance and
+// MREPAIR_REMESH_LMAX), the same iterations, the sharp edges at the same angle
+// constrained.
 //
 // Environment: MREPAIR_REMESH_LENGTH (absolute L) or MREPAIR_REMESH_FACTOR
 // (L = factor x mean input edge length, default 1), MREPAIR_REMESH_ITERATIONS
@@ -17,9 +22,9 @@
 #include <mrepair/adaptive_remesh.h>
 #include <mrepair/io.h>
 
+#include <mrepair/internal/cgal_compat.h>
+
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
@@ -28,6 +33,10 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Real_timer.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/version.h>
+#if CGAL_VERSION_NR >= 1060000000
+#include <CGAL/Polygon_mesh_processing/Adaptive_sizing_field.h>
+#endif
 
 #include <cmath>
 #include <ctime>
@@ -81,7 +90,7 @@ double target_length(const Mesh& m)
 // one-sided distance: max over the vertices, edge midpoints and centroids of `a` to `b`
 double one_sided(const Mesh& a, const Mesh& b)
 {
-  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
+  using Tree = mrepair::internal::Aabb_tree<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>;
   Tree tree(faces(b).first, faces(b).second, b);
   tree.accelerate_distance_queries();
   double d = 0;
@@ -214,6 +223,39 @@ mrepair::bench::Measurement run_adaptive(const std::string& path)
   return m;
 }
 
+#if CGAL_VERSION_NR >= 1060000000
+// CGAL 6's curvature-adaptive sizing field, on the adaptive run's settings
+mrepair::bench::Measurement run_cgal_adaptive(const std::string& path)
+{
+  mrepair::bench::Measurement m;
+  Mesh mesh = load(path);
+  const Mesh input = mesh;
+  const double eps = env("MREPAIR_REMESH_TOLERANCE", 0.001 * bbox_diagonal(mesh));
+  const double lmax = env("MREPAIR_REMESH_LMAX", 0.05 * bbox_diagonal(mesh));
+  const int it = int(env("MREPAIR_REMESH_ITERATIONS", 10));
+  const double angle = env("MREPAIR_REMESH_ANGLE", 44);
+  auto eif = mesh.add_property_map<Mesh::Edge_index, bool>("e:sharp", false).first;
+  CGAL::Real_timer t;
+  const std::clock_t c0 = std::clock();
+  t.start();
+  PMP::detect_sharp_edges(mesh, angle, eif);
+  PMP::Adaptive_sizing_field<Mesh> field(eps, std::make_pair(eps, lmax), faces(mesh), mesh);
+  PMP::isotropic_remeshing(faces(mesh), field, mesh,
+                           CGAL::parameters::number_of_iterations(it).edge_is_constrained_map(eif));
+  t.stop();
+  const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
+  mesh.collect_garbage();
+  m.seconds = t.time();
+  m.result.add("cpu_seconds", cpu);
+  m.result.add("tolerance", eps);
+  m.result.add("min_edge_length", eps);
+  m.result.add("max_edge_length", lmax);
+  m.result.add("iterations", it);
+  quality(mesh, input, m.after);
+  return m;
+}
+#endif
+
 mrepair::bench::Measurement run_uniform_count(const std::string& path)
 {
   mrepair::bench::Measurement m;
@@ -255,8 +297,16 @@ mrepair::bench::Task_registrar reg{
 
 mrepair::bench::Task_registrar reg_adaptive{
     {"remesh_adaptive",
-     "adaptive_remesh vs uniform remeshing at the same face count (env MREPAIR_REMESH_*)",
+     "adaptive_remesh vs uniform remeshing at the same face count"
+#if CGAL_VERSION_NR >= 1060000000
+     " and CGAL 6's Adaptive_sizing_field"
+#endif
+     " (env MREPAIR_REMESH_*)",
      {{"mrepair::adaptive_remesh", run_adaptive},
-      {"mrepair::remesh_to_face_count", run_uniform_count}}}};
+      {"mrepair::remesh_to_face_count", run_uniform_count},
+#if CGAL_VERSION_NR >= 1060000000
+      {"CGAL Adaptive_sizing_field", run_cgal_adaptive},
+#endif
+     }}};
 
 } // namespace

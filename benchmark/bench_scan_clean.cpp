@@ -1,15 +1,17 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
 // Task "degenerate+spikes": mrepair's scan-cleaning I steps (relax_spikes,
 // remove_unrelaxable_spikes, repair_near_degenerate_faces, relax_spikes again,
-// on one shared Geometric_statistics) beside CGAL 5.5's closest calls:
-// PMP::experimental::remove_almost_degenerate_faces (caps > 160 degrees,
-// needles with longest/shortest > 4, collapsed edges < 0.5 x mean length),
+// on one shared Geometric_statistics) beside CGAL's closest calls:
+// PMP::remove_almost_degenerate_faces (experimental in 5.5, documented in
+// 6.0; caps > 160 degrees, needles with longest/shortest > 4, collapsed edges
+// < 0.5 x mean length),
 // PMP::remove_degenerate_faces, and PMP::angle_and_area_smoothing (angle only:
 // area smoothing needs Ceres) for spikes. Both sides report the same counts,
 // computed by the same code on the output: near-degenerate faces (inspect.h
 // definition), spiked vertices by dihedral (> 100 degrees, as inspect) and by
 // the height criterion of relax_spikes.h, boundary edges, validity.
 #include "bench.h"
+#include "cgal_chain.h"
 
 #include <mrepair/geometric_statistics.h>
 #include <mrepair/io.h>
@@ -120,8 +122,8 @@ mrepair::bench::Measurement run_cgal(const std::string& path)
   const std::clock_t c0 = std::clock();
   t.start();
   t1.start();
-  PMP::experimental::remove_almost_degenerate_faces(m, std::cos(160.0 / 180.0 * CGAL_PI), 4.0,
-                                                    0.5 * mean);
+  mrepair::bench::remove_almost_degenerate_faces_with_cgal(m, std::cos(160.0 / 180.0 * CGAL_PI), 4.0,
+                                                          0.5 * mean);
   t1.stop();
   t2.start();
   const bool ok = PMP::remove_degenerate_faces(m);
@@ -152,8 +154,8 @@ mrepair::bench::Measurement run_cgal_degenerate_only(const std::string& path)
   CGAL::Real_timer t;
   const std::clock_t c0 = std::clock();
   t.start();
-  PMP::experimental::remove_almost_degenerate_faces(m, std::cos(160.0 / 180.0 * CGAL_PI), 4.0,
-                                                    0.5 * mean);
+  mrepair::bench::remove_almost_degenerate_faces_with_cgal(m, std::cos(160.0 / 180.0 * CGAL_PI), 4.0,
+                                                          0.5 * mean);
   PMP::remove_degenerate_faces(m);
   t.stop();
   out.seconds = t.time();

@@ -29,11 +29,17 @@ inline bool finite(const Point& p)
   return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
 }
 
-/// valid halfedge structure (and triangles only, when asked), finite points.
+/// valid halfedge structure without an isolated vertex (and triangles only,
+/// when asked), finite points.
 template <class Mesh>
 std::string check_mesh(const Mesh& m, const std::string& what, bool triangles, bool need_finite = true)
 {
   if (!CGAL::is_valid_polygon_mesh(m)) return what + ": output fails is_valid_polygon_mesh";
+  // CGAL 5.5's validity check rejects an isolated vertex, 6.0's accepts it:
+  // the targets reject it on both
+  for (auto v : vertices(m))
+    if (halfedge(v, m) == boost::graph_traits<Mesh>::null_halfedge())
+      return what + ": output has an isolated vertex";
   if (triangles && !faces(m).empty() && !CGAL::is_triangle_mesh(m))
     return what + ": output is not a triangle mesh";
   if (need_finite)

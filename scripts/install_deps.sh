@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what mrepair needs on Debian 12 (skips apt entirely when all is there).
 set -euo pipefail
-packages=(cmake g++ make libcgal-dev libeigen3-dev libtbb-dev libboost-dev
+packages=(cmake g++ make debian-archive-keyring libcgal-dev libeigen3-dev libtbb-dev libboost-dev
           libgtest-dev libgmock-dev libbenchmark-dev libcgal-demo
           # the Python package (pybind11) and its tests; venv, setuptools and
           # wheel for `pip install --no-build-isolation .`

@@ -173,6 +173,18 @@ Mesh to_mesh(const Soup& s)
   return m;
 }
 
+/// CGAL::is_valid_polygon_mesh as CGAL 5.5 has it on both releases: 6.0's
+/// accepts an isolated vertex, 5.5's rejects it, and the tests hold every
+/// output to the stricter rule.
+template <class Mesh>
+bool valid_polygon_mesh(const Mesh& m)
+{
+  if (!CGAL::is_valid_polygon_mesh(m)) return false;
+  for (auto v : vertices(m))
+    if (halfedge(v, m) == boost::graph_traits<Mesh>::null_halfedge()) return false;
+  return true;
+}
+
 /// number of live faces (num_faces on Surface_mesh counts removed ones).
 template <class Mesh>
 std::size_t face_count(const Mesh& m)

@@ -18,14 +18,9 @@
 #include <mrepair/report.h>
 #include <mrepair/resolve_intersections.h>
 
+#include <mrepair/internal/cgal_compat.h>
+
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/version.h>
-#if CGAL_VERSION_NR >= 1060000000
-#include <CGAL/AABB_traits_3.h>
-#else
-#include <CGAL/AABB_traits.h>
-#endif
 #include <CGAL/Bbox_3.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -168,7 +163,7 @@ std::size_t vertex_count(const Mesh& m)
 template <class Mesh>
 void expect_sound_surface(const Mesh& m, bool closed)
 {
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   const bool triangles = CGAL::is_triangle_mesh(m);
   EXPECT_TRUE(triangles);
   if (closed) { EXPECT_TRUE(CGAL::is_closed(m)) << border_halfedges(m) << " border halfedges"; }
@@ -193,12 +188,7 @@ std::size_t points_lost(const Mesh& out, const std::vector<Point>& input,
                         const std::function<bool(const Point&)>& skip, std::string* first = nullptr)
 {
   using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
-#if CGAL_VERSION_NR >= 1060000000
-  using Traits = CGAL::AABB_traits_3<K, Primitive>;
-#else
-  using Traits = CGAL::AABB_traits<K, Primitive>;
-#endif
-  using Tree = CGAL::AABB_tree<Traits>;
+  using Tree = mrepair::internal::Aabb_tree<K, Primitive>;
   using Side = CGAL::Side_of_triangle_mesh<Mesh, K>;
   CGAL::Bbox_3 box;
   for (const Point& p : input) box += p.bbox();
@@ -459,7 +449,7 @@ TYPED_TEST(Solids, merging_switched_off_keeps_both_shells)
   EXPECT_EQ(r.crossing_pairs_after, r.crossing_pairs_before);
   EXPECT_EQ(face_count(m), 24u);
   EXPECT_EQ(components(m), 2u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(CGAL::is_triangle_mesh(m));
   EXPECT_TRUE(CGAL::is_closed(m));
   const auto& reasons = r.crossing_left_by_reason;
@@ -507,7 +497,7 @@ TYPED_TEST(Solids, bad_input_gets_a_status_and_stays_untouched)
   const std::size_t f0 = faces(m).size();
   EXPECT_EQ(mrepair::resolve_intersections(m).status, Status::non_finite_input);
   EXPECT_EQ(faces(m).size(), f0);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   Soup q;
   q.points = {Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(0, 1, 0)};
   q.polygons = {Polygon{0, 1, 2, 3}};

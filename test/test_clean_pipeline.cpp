@@ -149,13 +149,13 @@ TYPED_TEST(Clean_pipeline, components_just_below_and_above_the_limit_issue_6)
   EXPECT_FALSE(r.kept_largest);
   EXPECT_EQ(face_count(m), 840u);
   EXPECT_EQ(components(m), 2u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 
   // Limit 41: the 40-face strip is small now.
   auto r2 = mrepair::remove_small_components(m, MP::min_component_faces(std::size_t(41), MP::relative_component_size(0.1)));
   EXPECT_EQ(r2.components_removed, 1u);
   EXPECT_EQ(face_count(m), 800u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }
 
 // The default relative size (1% of the largest component's faces and area)
@@ -176,7 +176,7 @@ TYPED_TEST(Clean_pipeline, components_relative_to_the_largest_stay)
   auto rd = mrepair::remove_small_components(d);
   EXPECT_EQ(rd.components_removed, 1u);
   EXPECT_EQ(face_count(d), 800u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(d));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(d));
 }
 
 TYPED_TEST(Clean_pipeline, components_never_empties_the_mesh)
@@ -190,7 +190,7 @@ TYPED_TEST(Clean_pipeline, components_never_empties_the_mesh)
   EXPECT_EQ(r.faces_removed, 2u);
   EXPECT_TRUE(r.kept_largest);
   EXPECT_EQ(face_count(m), 18u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 
   // With every size relative to it small, the largest still stays.
   auto r1 = mrepair::remove_small_components(m, MP::relative_component_size(1.0));
@@ -238,7 +238,7 @@ TYPED_TEST(Clean_pipeline, jagged_boundary_and_flipped_border_face)
   EXPECT_EQ(face_count(m), 1795u);
   EXPECT_NE(vertex_at(m, 30, 0), boost::graph_traits<Mesh>::null_vertex());
   EXPECT_NE(vertex_at(m, 0, 30), boost::graph_traits<Mesh>::null_vertex());
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   // Smoothing moved the boundary ring a little, never out of the plane.
   double max_shift = 0.;
   for (auto v : vertices(m)) {
@@ -265,7 +265,7 @@ TYPED_TEST(Clean_pipeline, dangling_face_on_a_hole_border_then_fill)
   auto r = mrepair::clean_boundaries(m);
   EXPECT_EQ(r.bad_vertices_removed, 1u);  // the ear apex; the outer corners stay
   EXPECT_EQ(r.faces_removed, 1u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   std::vector<std::size_t> sizes;
   EXPECT_EQ(border_loops(m, &sizes), 2u);
 
@@ -274,7 +274,7 @@ TYPED_TEST(Clean_pipeline, dangling_face_on_a_hole_border_then_fill)
   EXPECT_EQ(h.holes_found, 1u);
   EXPECT_EQ(h.holes_filled, 1u);
   EXPECT_EQ(h.holes_too_large, 1u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(border_loops(m), 1u);
 }
 
@@ -295,7 +295,7 @@ TYPED_TEST(Clean_pipeline, island_near_a_boundary_is_removed)
   EXPECT_EQ(c.components_removed, 1u);
   EXPECT_EQ(c.faces_removed, 12u);
   EXPECT_EQ(components(m), 1u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(isolated_vertices(m), 0u);
 }
 
@@ -332,7 +332,7 @@ TYPED_TEST(Clean_pipeline, removal_never_leaves_a_pinched_vertex)
   EXPECT_EQ(ops.counts.pinches_resolved, 1u);
   EXPECT_EQ(ops.counts.faces_removed, 3u);
   EXPECT_EQ(face_count(m), 197u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(border_loops(m), 2u);
 }
 
@@ -346,7 +346,7 @@ TYPED_TEST(Clean_pipeline, small_hole_patch_matches_the_surrounding_density)
   auto r = mrepair::fill_small_holes(m, MP::max_hole_vertices(100));
   EXPECT_EQ(r.holes_filled, 1u);
   EXPECT_EQ(r.holes_too_large, 1u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   // The missing 72 triangles come back at about the same density.
   const std::size_t added = face_count(m) - f0;
   EXPECT_GT(added, 40u);
@@ -376,7 +376,7 @@ TYPED_TEST(Clean_pipeline, small_hole_patch_matches_the_surrounding_density)
   auto r2 = mrepair::fill_small_holes(m2, MP::hole_density_factor(0.5));
   EXPECT_EQ(r2.holes_filled, 1u);
   EXPECT_GT(face_count(m2) - f0, 2 * added);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m2));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m2));
 }
 
 TYPED_TEST(Clean_pipeline, large_hole_is_left_open)
@@ -392,7 +392,7 @@ TYPED_TEST(Clean_pipeline, large_hole_is_left_open)
   EXPECT_EQ(face_count(m), f0);
   auto r2 = mrepair::fill_small_holes(m, MP::max_hole_vertices(49));
   EXPECT_EQ(r2.holes_filled, 1u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }
 
 TYPED_TEST(Clean_pipeline, aborted_fill_of_a_slit_is_enlarged_and_filled)
@@ -425,7 +425,7 @@ TYPED_TEST(Clean_pipeline, aborted_fill_of_a_slit_is_enlarged_and_filled)
   EXPECT_GT(r.enlargement_faces_removed, 0u);
   EXPECT_EQ(r.holes_filled, 1u);
   EXPECT_TRUE(r.open_holes.empty());
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(border_loops(m), 1u);
 
   // With no enlargement allowed the hole is reported open, with its reason.
@@ -435,7 +435,7 @@ TYPED_TEST(Clean_pipeline, aborted_fill_of_a_slit_is_enlarged_and_filled)
   ASSERT_EQ(r2.open_holes.size(), 1u);
   EXPECT_EQ(r2.open_holes[0].reason, "triangulation_failed");
   EXPECT_EQ(r2.open_holes[0].vertices, 8u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m2));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m2));
 }
 
 // ---- 3.5 fills that would create a complex edge ----------------------------
@@ -459,7 +459,7 @@ template <class Mesh>
 void expect_clean_disk(const Mesh& m, std::size_t outer_loop, const char* what)
 {
   SCOPED_TRACE(what);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_FALSE(has_multi_edge(m));
   std::vector<std::size_t> sizes;
   EXPECT_EQ(border_loops(m, &sizes), 1u);
@@ -495,7 +495,7 @@ TYPED_TEST(Clean_pipeline, batch_fill_does_not_depend_on_the_threads)
     EXPECT_EQ(r.status, mrepair::Status::ok);
     EXPECT_EQ(r.holes_filled, 16u);
     EXPECT_GT(r.vertices_added, 0u);  // refined patches, not Liepa's alone
-    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+    EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
     std::vector<std::array<double, 9>> triangles;
     for (auto f : faces(m)) {
       std::array<double, 9> t{};
@@ -647,7 +647,7 @@ TYPED_TEST(Clean_pipeline, fill_that_would_create_a_complex_edge_is_enlarged)
   // 288 grid triangles - 32 + 16 + 3 zip triangles + the tongue
   ASSERT_EQ(face_count(m0), 276u);
   ASSERT_EQ(vertices(m0).size(), 169u - 9u + 4u);
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m0));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m0));
   ASSERT_TRUE(halfedge(vertex_at(m0, 6, 5), vertex_at(m0, 7, 6), m0).second);  // p-q
   std::vector<std::size_t> sizes;
   ASSERT_EQ(border_loops(m0, &sizes), 2u);
@@ -666,7 +666,7 @@ TYPED_TEST(Clean_pipeline, fill_that_would_create_a_complex_edge_is_enlarged)
   EXPECT_EQ(r1.open_holes[0].vertices, 4u);
   EXPECT_EQ(r1.open_holes[0].reason, "triangulation_failed");
   EXPECT_EQ(face_count(m1), 276u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m1));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m1));
   EXPECT_FALSE(has_multi_edge(m1));
 
   // One enlargement: every zip face and the tongue touch p, q or s (20
@@ -699,7 +699,7 @@ TYPED_TEST(Clean_pipeline, fill_that_would_create_a_complex_edge_is_enlarged)
   EXPECT_TRUE(mrepair::succeeded(r3.status)) << mrepair::to_string(r3.status);
   EXPECT_TRUE(r3.holes.open_holes.empty());
   EXPECT_EQ(border_loops(m3), 1u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m3));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m3));
   EXPECT_FALSE(has_multi_edge(m3));
 }
 
@@ -833,7 +833,7 @@ TYPED_TEST(Clean_pipeline, steps_keep_statistics_current_through_the_local_opera
   std::vector<typename boost::graph_traits<Mesh>::face_descriptor> one{*faces(m).begin()};
   EXPECT_GE(ops.remove_faces_without_pinches(one), 1u);
   EXPECT_TRUE(stats_equal_fresh(m, st));
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   // the counts of the operations reconcile with the mesh
   EXPECT_EQ(f0 + ops.counts.faces_added, face_count(m) + ops.counts.faces_removed);
   // the constant-time element counts the operations use agree with the
@@ -889,7 +889,7 @@ TYPED_TEST(Clean_pipeline, pipeline_on_a_dirty_sphere)
   EXPECT_EQ(r.non_finite_vertices_removed, 1u);
   // 6 of the 8 faces of grid(2, 2) use its centre (vertex 4).
   EXPECT_EQ(r.faces_removed_with_non_finite, 6u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(all_finite(m));
   EXPECT_EQ(isolated_vertices(m), 0u);
   EXPECT_EQ(components(m), 1u);
@@ -918,7 +918,7 @@ TYPED_TEST(Clean_pipeline, fills_beyond_the_reserved_room)
   // test_keeps_model.cpp (Keeps_model_reserve.reserved_room_changes_no_result)
   ASSERT_GT(r.holes.faces_added, f0 / 32 + 1024) << "the case must outgrow the reserved room";
   EXPECT_EQ(border_loops(m), 1u);  // the grid's outline only
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(all_finite(m));
 
   // A dense patch (about 8,500 faces for a 24-vertex loop): its short edges
@@ -929,7 +929,7 @@ TYPED_TEST(Clean_pipeline, fills_beyond_the_reserved_room)
   EXPECT_EQ(h.holes_filled, 1u);
   EXPECT_GT(face_count(d), d0 + 5000);
   EXPECT_EQ(border_loops(d), 1u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(d));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(d));
 }
 
 TYPED_TEST(Clean_pipeline, pipeline_steps_can_be_disabled)
@@ -991,7 +991,7 @@ TYPED_TEST(Clean_pipeline, nan_vertex_on_a_boundary)
   EXPECT_TRUE(mrepair::succeeded(r.status));
   EXPECT_EQ(r.faces_removed_with_non_finite, 3u);
   EXPECT_TRUE(all_finite(m));
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }
 
 // Finite coordinates near DBL_MAX overflow in averages and cross products
@@ -1027,7 +1027,7 @@ TYPED_TEST(Clean_pipeline, huge_coordinates_are_refused_untouched)
   auto r = mrepair::clean_scan_mesh(m, MP::min_component_faces(10, MP::max_hole_vertices(10)));
   EXPECT_TRUE(mrepair::succeeded(r.status)) << mrepair::to_string(r.status);
   EXPECT_TRUE(all_finite(m));
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }
 
 // The team generator's scan (mrepair-generate scan), when it is built: after
@@ -1054,7 +1054,7 @@ TYPED_TEST(Clean_pipeline, generated_scan)
   const std::size_t f0 = face_count(m);
   auto r = mrepair::clean_scan_mesh(m, MP::min_component_faces(100, MP::max_hole_vertices(60)));
   EXPECT_TRUE(mrepair::succeeded(r.status)) << mrepair::to_string(r.status) << " " << r.message;
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(all_finite(m));
   EXPECT_EQ(isolated_vertices(m), 0u);
   EXPECT_GE(r.isolated_vertices_removed + r.non_finite_vertices_removed, 1u);
@@ -1097,7 +1097,7 @@ TEST(Cli, polygon_meshes_are_triangulated)
     Surface_mesh m;
     ASSERT_EQ(mrepair::read_polygon_mesh(out, m).status, mrepair::Status::ok) << command;
     EXPECT_TRUE(CGAL::is_triangle_mesh(m)) << command;
-    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m)) << command;
+    EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m)) << command;
     EXPECT_TRUE(CGAL::is_closed(m)) << command;
     if (std::string(command) != "remesh") {
       EXPECT_EQ(face_count(m), 16u) << command;
@@ -1137,7 +1137,7 @@ TEST(Cli, repair_writes_the_same_file_on_one_thread_and_beside_the_inspection)
   EXPECT_EQ(one, two);
   Surface_mesh m;
   ASSERT_EQ(mrepair::read_polygon_mesh(dir + "mrepair_cli_beside_2.off", m).status, mrepair::Status::ok);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 #else
   GTEST_SKIP() << "MREPAIR_CLI not defined";
 #endif
@@ -1159,7 +1159,7 @@ TEST(Clean_issue_17, parallel_region_face_counts_match_the_sequential_pass)
   for (auto f : faces(m))
     if (std::size_t(f) % 997 == 0) doomed.push_back(f);
   for (auto f : doomed) CGAL::Euler::remove_face(halfedge(f, m), m);
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
   // a list of 24,000 vertices in a scrambled order, labelled with 37 loops
   std::vector<Surface_mesh::Vertex_index> list;
   for (auto v : vertices(m))
@@ -1208,7 +1208,7 @@ TEST(Clean_issue_17, parallel_component_labels_match_the_sequential_search)
     if (c.y() < -8.95 && c.y() > -9. && int(c.x()) % 7 == 0) doomed.push_back(f);
   }
   for (auto f : doomed) CGAL::Euler::remove_face(halfedge(f, m), m);
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
   ASSERT_GE(m.num_faces(), std::size_t(65536));  // the parallel path
 
   auto id = get(CGAL::dynamic_face_property_t<std::size_t>(), m);

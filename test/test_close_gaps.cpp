@@ -150,7 +150,7 @@ TYPED_TEST(Close_gaps, two_patches_with_one_percent_gap_become_one)
 
   mrepair::Gap_closing_result r = mrepair::close_gaps(m, 0.02);
   EXPECT_EQ(r.status, mrepair::Status::ok);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(r.boundary_edges_before, 80u);
   EXPECT_EQ(r.boundary_loops_before, 2u);
   // 11 seam vertices on each side merge pairwise; the 20 seam edges glue.
@@ -179,7 +179,7 @@ TYPED_TEST(Close_gaps, t_junction_seam_closes_without_t_junctions)
 
   mrepair::Gap_closing_result r = mrepair::close_gaps(m, 0.02);
   EXPECT_EQ(r.status, mrepair::Status::ok);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   // 11 matching pairs merge; the 10 right vertices between them split left edges.
   EXPECT_EQ(r.vertex_vertex, 11u);
   EXPECT_EQ(r.vertex_edge, 10u);
@@ -200,7 +200,7 @@ TYPED_TEST(Close_gaps, crack_in_a_plane_closes)
 
   mrepair::Gap_closing_result r = mrepair::close_gaps(m, 0.01);
   EXPECT_EQ(r.status, mrepair::Status::ok);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(r.operations, 9u);
   EXPECT_EQ(border_edges(m), 60u);
   EXPECT_EQ(border_loops(m), 1u);
@@ -220,7 +220,7 @@ TYPED_TEST(Close_gaps, slot_wider_than_tolerance_stays_open)
 
   mrepair::Gap_closing_result r = mrepair::close_gaps(m, 0.02);
   EXPECT_EQ(r.status, mrepair::Status::ok);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(r.operations, 11u);
   EXPECT_EQ(border_edges(m), 100u);
   EXPECT_EQ(border_loops(m), 2u);
@@ -276,7 +276,7 @@ TYPED_TEST(Close_gaps, forward_backward_restores_the_input)
   EXPECT_EQ(seq.size(), a + b);
   EXPECT_EQ(seq.position(), a + b);
   const auto faces1 = signature(m);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 
   // back to the first gap only, then all the way
   EXPECT_EQ(seq.backward_to_distance(0.012), b);
@@ -284,7 +284,7 @@ TYPED_TEST(Close_gaps, forward_backward_restores_the_input)
   EXPECT_EQ(border_loops(m), 2u);
   EXPECT_EQ(seq.backward(1000), a);
   EXPECT_EQ(seq.position(), 0u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(face_count(m), nf0);
   EXPECT_EQ(vertices(m).size(), nv0);
   EXPECT_EQ(signature(m), faces0);
@@ -316,10 +316,10 @@ TYPED_TEST(Close_gaps, valid_after_every_step)
     std::size_t n = 0;
     while (seq.forward(1) == 1) {
       ++n;
-      ASSERT_TRUE(CGAL::is_valid_polygon_mesh(*mesh)) << "after forward step " << n;
+      ASSERT_TRUE(mrepair_test::valid_polygon_mesh(*mesh)) << "after forward step " << n;
     }
     EXPECT_GT(n, 0u);
-    while (seq.backward(1) == 1) ASSERT_TRUE(CGAL::is_valid_polygon_mesh(*mesh)) << "backward at " << seq.position();
+    while (seq.backward(1) == 1) ASSERT_TRUE(mrepair_test::valid_polygon_mesh(*mesh)) << "backward at " << seq.position();
     EXPECT_EQ(seq.position(), 0u);
   }
 }
@@ -341,7 +341,7 @@ TYPED_TEST(Close_gaps, region_restriction)
   }
   auto r = mrepair::close_gaps(m, 0.02, MP::gap_face_selection(sel));
   EXPECT_EQ(r.status, mrepair::Status::ok);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(r.operations, 11u);
   EXPECT_EQ(border_loops(m), 2u);
   EXPECT_EQ(seam_border_edges(m, 0.95, 1.06), 20u);  // the unselected seam stays open
@@ -400,7 +400,7 @@ TYPED_TEST(Close_gaps, report_and_cancel)
   auto r = mrepair::close_gaps(m, 0.02, CGAL::parameters::visitor(std::ref(stop)));
   EXPECT_EQ(r.status, mrepair::Status::cancelled);
   EXPECT_EQ(r.operations, 0u);  // polled before the first contraction (then every 256)
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   mrepair::Report rep;
   r.to_report(rep);
   EXPECT_NE(rep.to_json().find("\"vertex_vertex\""), std::string::npos);
@@ -483,7 +483,7 @@ TYPED_TEST(Close_gaps, automatic_tolerance_closes_seams_not_a_hole)
 {
   using Mesh = typename TypeParam::Mesh;
   Mesh m = to_mesh<Mesh>(two_patches_and_a_hole(0.01));
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
   ASSERT_EQ(border_loops(m), 3u);
 
   const mrepair::Gap_tolerance_estimate e = mrepair::estimate_gap_tolerance(m);
@@ -497,7 +497,7 @@ TYPED_TEST(Close_gaps, automatic_tolerance_closes_seams_not_a_hole)
   EXPECT_EQ(r.status, mrepair::Status::ok);
   EXPECT_TRUE(r.tolerance_estimated);
   EXPECT_DOUBLE_EQ(r.tolerance, e.tolerance);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(seam_border_edges(m, 0.95, 1.06), 0u);
   EXPECT_EQ(border_loops(m), 2u);  // the outline and the hole
   EXPECT_EQ(r.boundary_edges_after, 60u + 8u);
@@ -511,7 +511,7 @@ TYPED_TEST(Close_gaps, automatic_tolerance_t_junction_seam)
   Mesh m = to_mesh<Mesh>(two_patches_and_a_hole(0.01, 20));  // 11 against 21 seam vertices
   mrepair::Gap_closing_result r = mrepair::close_gaps(m, mrepair::automatic_gap_tolerance);
   EXPECT_EQ(r.status, mrepair::Status::ok);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(r.vertex_edge, 10u);  // the 10 right vertices between the matches split left edges
   EXPECT_EQ(seam_border_edges(m, 0.95, 1.06), 0u);
   EXPECT_EQ(border_loops(m), 2u);
@@ -526,7 +526,7 @@ TYPED_TEST(Close_gaps, automatic_tolerance_of_closed_and_holed_meshes_is_zero)
   s.polygons.resize(s.polygons.size() - 200);  // the first patch alone: an outline and a hole
   s.points.resize(s.points.size() - 121);
   Mesh m = to_mesh<Mesh>(s);
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
   const auto sig = signature(m);
   const mrepair::Gap_tolerance_estimate e = mrepair::estimate_gap_tolerance(m);
   EXPECT_EQ(e.tolerance, 0.);
@@ -558,7 +558,7 @@ TYPED_TEST(Close_gaps, automatic_tolerance_leaves_a_narrow_strip_between_holes)
   s.polygons = kept;
   for (std::size_t i = 3; i <= 17; ++i) s.points[10 * 21 + i] = Point(0.1 * double(i), 0.95, 0.);
   Mesh m = to_mesh<Mesh>(s);
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
   ASSERT_EQ(border_loops(m), 3u);
   const auto sig = signature(m);
   const mrepair::Gap_tolerance_estimate e = mrepair::estimate_gap_tolerance(m);
@@ -596,7 +596,7 @@ TYPED_TEST(Close_gaps, automatic_tolerance_ignores_the_thin_open_ends_of_a_flat_
       s.polygons.push_back({id(j, k), id(j + 1, k + 1), id(j + 1, k)});
     }
   Mesh m = to_mesh<Mesh>(s);
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
   ASSERT_EQ(border_loops(m), 2u);
   const auto sig = signature(m);
   const mrepair::Gap_tolerance_estimate e = mrepair::estimate_gap_tolerance(m);
@@ -635,7 +635,7 @@ TYPED_TEST(Close_gaps, blade_like_thin_part_closes_without_flips)
     auto r = automatic ? mrepair::close_gaps(c, mrepair::automatic_gap_tolerance)
                        : mrepair::close_gaps(c, 0.02);
     EXPECT_EQ(r.status, mrepair::Status::ok);
-    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(c));
+    EXPECT_TRUE(mrepair_test::valid_polygon_mesh(c));
     EXPECT_EQ(border_edges(c), 0u) << "automatic " << automatic;
     EXPECT_TRUE(CGAL::is_closed(c));
     EXPECT_EQ(inward_faces(c), 0u);
@@ -716,7 +716,7 @@ TYPED_TEST(Close_gaps, bridge_through_a_clean_surface_is_taken_back)
         CGAL::parameters::default_values());
     mrepair::Gap_closing_result r;
     mrepair::internal::bridge_narrow_loops(m, vpm, 0.02, 100, quiet, r);
-    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+    EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
     if (with_box) {
       EXPECT_EQ(r.loops_bridged, 0u);
       EXPECT_EQ(r.bridges_rejected_intersecting, 1u);

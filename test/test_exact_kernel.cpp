@@ -363,7 +363,7 @@ TYPED_TEST(Exact_kernel, stitch_soup_closes_a_cracked_cube)
   EXPECT_EQ(face_count(m), 12u);
   EXPECT_EQ(vertices(m).size(), 8u);
   EXPECT_TRUE(CGAL::is_closed(m));
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }
 
 // close_gaps.h: two patches 0.01 apart are sewn, both sides meet halfway.
@@ -420,7 +420,7 @@ TYPED_TEST(Exact_kernel, spikes_relax_and_are_removed)
     EXPECT_EQ(json(r), json(rr));
     EXPECT_TRUE(same_mesh(a, b));
     EXPECT_EQ(face_count(a), 200u - r.faces_removed - r.dangling_faces_removed);
-    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(a));
+    EXPECT_TRUE(mrepair_test::valid_polygon_mesh(a));
   }
 }
 
@@ -440,7 +440,7 @@ TYPED_TEST(Exact_kernel, near_degenerate_cap_is_repaired)
   EXPECT_GE(r.near_degenerate_faces_before, 1u);
   EXPECT_EQ(r.near_degenerate_faces_after, 0u);
   EXPECT_GE(r.edges_collapsed + r.edges_flipped, 1u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }
 
 // remove_small_components.h: the island goes, the sheet stays.
@@ -477,7 +477,7 @@ TYPED_TEST(Exact_kernel, folded_border_is_cleaned)
   EXPECT_TRUE(same_mesh(m, ref));
   EXPECT_GE(r.faces_removed, 1u);
   EXPECT_EQ(face_count(m), 288u - r.faces_removed - r.component_faces_removed);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }
 
 // fill_small_holes.h (Liepa's patch, refinement, and fairing): the hole closes.
@@ -504,7 +504,7 @@ TYPED_TEST(Exact_kernel, small_hole_is_filled)
     EXPECT_EQ(r.holes_filled, 1u);
     EXPECT_EQ(face_count(m), f0 + r.faces_added);
     EXPECT_EQ(border_halfedges(m), 48u);  // the outline only
-    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+    EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   }
 }
 
@@ -561,7 +561,7 @@ TYPED_TEST(Exact_kernel, clean_scan_mesh_on_a_dirty_sphere)
   EXPECT_EQ(r.faces_after, face_count(m));
   EXPECT_GE(r.holes.holes_filled, 2u);
   EXPECT_EQ(border_halfedges(m), 0u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }
 
 // adaptive_remesh.h: uniform and adaptive remeshing of a sphere and a cube.

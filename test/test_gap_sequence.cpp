@@ -144,7 +144,7 @@ TYPED_TEST(Gap_sequence, save_and_replay_give_the_same_mesh)
                                                                   MP::gap_fingerprint_input(true))));
   ASSERT_EQ(s2.replay(f, error), mrepair::Status::ok) << error;
   EXPECT_EQ(s2.position(), s1.size());
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m2));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m2));
   EXPECT_EQ(shape(m1), shape(m2));
   EXPECT_EQ(saved(s2), text);
 
@@ -179,8 +179,8 @@ TYPED_TEST(Gap_sequence, to_distance_equals_stepping_forward)
   Mesh m3 = input;
   mrepair::Gap_closing_sequence<Mesh> s3(m3, tolerance);
   EXPECT_EQ(s3.forward(half), half);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m1));
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(full));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m1));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(full));
   EXPECT_EQ(shape(m1), shape(full));
   EXPECT_EQ(shape(m1), shape(m3));
   EXPECT_LE(s1.current_distance(), d);
@@ -200,10 +200,10 @@ TYPED_TEST(Gap_sequence, backward_then_forward_restores_the_mesh)
   ASSERT_GT(n, 0u);
   EXPECT_NE(closed, input);
   EXPECT_EQ(s.backward(n), n);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(shape(m), input);
   EXPECT_EQ(s.forward(n), n);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(shape(m), closed);
   EXPECT_EQ(s.size(), n);  // replayed, nothing new recorded
   s.go_to(n / 3);
@@ -275,7 +275,7 @@ TYPED_TEST(Gap_sequence, region_keeps_gaps_outside_open)
   const auto before = shape(m);
   mrepair::Gap_closing_result r = mrepair::close_gaps(m, tolerance, MP::gap_vertex_selection(sel));
   ASSERT_EQ(r.status, mrepair::Status::ok);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(seam_border_edges(m, 0.95, 1.06), 0u);
   EXPECT_EQ(seam_border_edges(m, 1.96, 2.07), second);
 
@@ -289,7 +289,7 @@ TYPED_TEST(Gap_sequence, region_keeps_gaps_outside_open)
   }
   r = mrepair::close_gaps(f, tolerance, MP::gap_face_selection(fsel));
   ASSERT_EQ(r.status, mrepair::Status::ok);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(f));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(f));
   EXPECT_EQ(seam_border_edges(f, 0.95, 1.06), first);
   EXPECT_EQ(seam_border_edges(f, 1.96, 2.07), 0u);
   (void)before;
@@ -345,7 +345,7 @@ TEST(Gap_sequence_cli, save_load_distance_steps_and_profile)
   EXPECT_EQ(file_shape(out1), file_shape(out2));
   Surface_mesh m;
   ASSERT_EQ(mrepair::read_polygon_mesh(out1, m).status, mrepair::Status::ok);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 
   // the profile: a header, the input row first, boundary edges never growing
   std::istringstream table(slurp(csv));
@@ -421,7 +421,7 @@ TEST(Gap_sequence_cli, region_options_keep_gaps_outside_open)
   ASSERT_EQ(run(in + " " + out + " --tolerance 0.02 --box -1,-1,-1,1.5,2,1"), 0);
   Surface_mesh m;
   ASSERT_EQ(mrepair::read_polygon_mesh(out, m).status, mrepair::Status::ok);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(seam_border_edges(m, 0.95, 1.06), 0u);
   EXPECT_EQ(seam_border_edges(m, 1.96, 2.07), 40u);
 
@@ -436,7 +436,7 @@ TEST(Gap_sequence_cli, region_options_keep_gaps_outside_open)
   ASSERT_EQ(run(in + " " + out + " --tolerance 0.02 --faces " + faces), 0);
   Surface_mesh m2;
   ASSERT_EQ(mrepair::read_polygon_mesh(out, m2).status, mrepair::Status::ok);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m2));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m2));
   EXPECT_EQ(seam_border_edges(m2, 0.95, 1.06), 30u);
   EXPECT_EQ(seam_border_edges(m2, 1.96, 2.07), 0u);
 }

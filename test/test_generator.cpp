@@ -344,7 +344,7 @@ TYPED_TEST(Generator_mesh, ScanTopologyMatchesManifest)
   Mesh mesh;
   mrepair::Io_result io = mrepair::read_polygon_mesh(d / "s.off", mesh);
   ASSERT_EQ(io.status, mrepair::Status::ok) << io.message;
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(mesh));
   ASSERT_EQ(face_count(mesh), manifest_count(m, "output", "faces"));
 
   std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor> cycles;
@@ -367,7 +367,7 @@ TYPED_TEST(Generator_mesh, ScanTopologyMatchesManifest)
   // every hole's listed boundary vertices (ids of the file) are on the border of the mesh
   Loaded l = load(d / "s.off");
   std::map<Point, bool> on_border;
-  for (auto v : vertices(mesh)) on_border[get(CGAL::vertex_point, mesh, v)] = CGAL::is_border(v, mesh) != boost::none;
+  for (auto v : vertices(mesh)) on_border[get(CGAL::vertex_point, mesh, v)] = bool(CGAL::is_border(v, mesh));
   std::size_t checked = 0;
   for (const Listed_defect& df : manifest_defects(m))
     if (df.kind == "hole" || df.kind == "jagged_hole") {

@@ -99,7 +99,7 @@ void expect_both(const Soup& s, const Counts& expected, const std::string& where
   Inspection_report rs = mrepair::inspect_polygon_soup(s.points, s.polygons);
   expect_counts(rs, expected, where + " (soup)");
   Mesh m = to_mesh<Mesh>(s);
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
   Inspection_report rm = mrepair::inspect(m);
   expect_counts(rm, expected, where + " (mesh)");
 }

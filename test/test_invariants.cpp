@@ -23,9 +23,9 @@
 #include <mrepair/stitch_soup.h>
 #include <mrepair/visitors.h>
 
+#include <mrepair/internal/cgal_compat.h>
+
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
 #include <CGAL/boost/graph/IO/OFF.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -335,7 +335,7 @@ bool inside(const CGAL::Bbox_3& b, const Point& p, double slack)
 template <class Mesh>
 ::testing::AssertionResult valid_output(const Mesh& m, const Geometry& in)
 {
-  if (!CGAL::is_valid_polygon_mesh(m)) return ::testing::AssertionFailure() << "invalid polygon mesh";
+  if (!mrepair_test::valid_polygon_mesh(m)) return ::testing::AssertionFailure() << "invalid polygon mesh";
   if (faces(m).size() > 0 && !CGAL::is_triangle_mesh(m))
     return ::testing::AssertionFailure() << "not a triangle mesh";
   std::size_t nf = 0;
@@ -398,7 +398,7 @@ template <class Mesh>
 double max_distance_to_surface(const Mesh& m, const Mesh& input)
 {
   using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
-  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+  using Tree = mrepair::internal::Aabb_tree<K, Primitive>;
   Tree tree(faces(input).first, faces(input).second, input);
   tree.accelerate_distance_queries();
   double worst = 0;
@@ -912,8 +912,8 @@ TEST(RepairJob, TriangleArraysGiveTheSameMeshAsPolygonVectors)
   EXPECT_EQ(a.faces_out, b.faces_out);
   EXPECT_EQ(a.after.faces, b.after.faces);
   EXPECT_TRUE(a.faces_reconcile());
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m1));
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m2));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m1));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m2));
   ASSERT_EQ(num_vertices(m1), num_vertices(m2));
   ASSERT_EQ(num_faces(m1), num_faces(m2));
   EXPECT_EQ(a.after.boundary_loops, 0u);  // the hole is filled
@@ -967,8 +967,8 @@ TEST(RepairJob, InputInspectionBesideTheSoupStageChangesNothing)
   EXPECT_EQ(one_by_one, side_by_side);
   EXPECT_EQ(one_by_one[0], "before");
   EXPECT_EQ(one_by_one[1], "soup_to_manifold");
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m1));
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m2));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m1));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m2));
   ASSERT_EQ(num_vertices(m1), num_vertices(m2));
   ASSERT_EQ(num_faces(m1), num_faces(m2));
   for (auto v : vertices(m1)) EXPECT_EQ(m1.point(v), m2.point(v)) << v;
@@ -1012,7 +1012,7 @@ TEST(RepairJob, OutputIsFinalOnlyAfterASuccessfulCleaning)
     Mesh m;
     const mrepair::Repair_result r = mrepair::repair_polygon_soup(
         points, polygons, m, options, CGAL::parameters::visitor(std::ref(visitor)));
-    ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+    ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
     ASSERT_FALSE(seen.empty());
     for (const auto& x : seen) {
       if (x.first != "resolve_intersections" && x.first != "after") {

@@ -152,7 +152,7 @@ TYPED_TEST(Io_mesh, round_trip_every_format_exactly)
     ASSERT_EQ(r.status, Status::ok) << r.message;
     EXPECT_EQ(r.format, f.ext);
     EXPECT_EQ(r.binary, f.binary);
-    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(back));
+    EXPECT_TRUE(mrepair_test::valid_polygon_mesh(back));
     EXPECT_EQ(vertices(back).size(), 162u);
     EXPECT_EQ(face_count(back), 320u);
 
@@ -272,7 +272,7 @@ TYPED_TEST(Io_mesh, writes_surface_mesh_with_removed_elements)
   ASSERT_EQ(mrepair::read_polygon_mesh(path, back).status, Status::ok);
   EXPECT_EQ(face_count(back), 7u);
   EXPECT_EQ(vertices(back).size(), vertices(m).size());
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(back));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(back));
 }
 
 // A Surface_mesh without removed elements is written in place, a Polyhedron
@@ -960,7 +960,7 @@ TYPED_TEST(Io_mesh, exporter_obj_files_read_as_meshes)
   Mesh m;
   Io_result r = mrepair::read_polygon_mesh(pentagon, m);
   ASSERT_EQ(r.status, Status::ok) << r.message;
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   ASSERT_EQ(face_count(m), 1u);
   EXPECT_EQ(CGAL::degree(*faces(m).begin(), m), 5u);
 
@@ -973,7 +973,7 @@ TYPED_TEST(Io_mesh, exporter_obj_files_read_as_meshes)
   Mesh p;
   r = mrepair::read_polygon_mesh(pyramid, p);
   ASSERT_EQ(r.status, Status::ok) << r.message;
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(p));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(p));
   EXPECT_TRUE(CGAL::is_closed(p));
   EXPECT_EQ(vertices(p).size(), 5u);
   EXPECT_EQ(face_count(p), 5u);
@@ -1338,7 +1338,7 @@ TYPED_TEST(Io_mesh, builder_agrees_with_cgal_on_random_soups)
     ++built;
     Mesh theirs;
     PMP::polygon_soup_to_polygon_mesh(s.points, polys, theirs);
-    ASSERT_TRUE(CGAL::is_valid_polygon_mesh(ours)) << "trial " << trial;
+    ASSERT_TRUE(mrepair_test::valid_polygon_mesh(ours)) << "trial " << trial;
     // CGAL keeps unused points as isolated vertices, we leave them out
     std::set<std::size_t> used;
     for (const Polygon& p : polys) used.insert(p.begin(), p.end());
@@ -1405,7 +1405,7 @@ TYPED_TEST(Io_mesh, large_polygons)
     ASSERT_EQ(r.status, Status::ok) << r.message;
     EXPECT_EQ(face_count(m), std::string(f.ext) == "stl" ? 298u : 1u);
     EXPECT_EQ(vertices(m).size(), 300u);
-    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+    EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   }
   // the same polygon with a vertex repeated far apart is not a mesh
   s.polygons[0][250] = 10;
@@ -1515,7 +1515,7 @@ TEST(Io_real, armadillo_matches_cgal_counts)
   EXPECT_EQ(x.polygons.size(), 52000u);
   Surface_mesh m;
   ASSERT_EQ(mrepair::read_polygon_mesh(path, m).status, Status::ok);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(CGAL::is_closed(m));
 }
 

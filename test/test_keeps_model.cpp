@@ -82,7 +82,7 @@ mrepair::Scan_cleaning_result clean_and_check(Mesh& m, Input_profile p = Input_p
   const std::size_t f0 = face_count(m);
   mrepair::Scan_cleaning_result r = mrepair::clean_scan_mesh(m, MP::input_profile(p));
   EXPECT_TRUE(mrepair::succeeded(r.status)) << mrepair::to_string(r.status) << " " << r.message;
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(CGAL::is_triangle_mesh(m));
   EXPECT_EQ(r.faces_before, f0);
   EXPECT_EQ(r.faces_after, face_count(m));
@@ -241,7 +241,7 @@ TYPED_TEST(Keeps_model, jagged_border_is_eroded_within_its_budget)
   EXPECT_EQ(f0 - face_count(m), b.faces_removed + b.component_faces_removed);
   // never more than the loop's share of its region (plus pinch fans)
   EXPECT_LE(b.faces_removed - b.pinch_faces_removed, f0 / 2);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   // a tiny jagged component is never deleted by the erosion
   Soup tiny;
   tiny.points = {Point(0, 0, 0), Point(1, 0, 0), Point(0.5, 0.1, 0), Point(0.5, 1, 0)};
@@ -326,7 +326,7 @@ TYPED_TEST(Keeps_model, zero_area_face_next_to_a_needle)
   EXPECT_EQ(v.degenerate_faces_found, 1u);
   EXPECT_EQ(v.caps_flipped, 1u);
   EXPECT_EQ(face_count(m), 4u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }
 
 TYPED_TEST(Keeps_model, zero_length_edge_is_collapsed_without_moving_anything)
@@ -340,7 +340,7 @@ TYPED_TEST(Keeps_model, zero_length_edge_is_collapsed_without_moving_anything)
   EXPECT_EQ(v.degenerate_faces_left, 0u);
   EXPECT_GE(v.zero_length_edges_collapsed, 1u);
   EXPECT_EQ(face_count(m), 18u - v.faces_removed());
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }
 
 // Found by the random invariants (case 117): a detached two-face pillow
@@ -364,7 +364,7 @@ TYPED_TEST(Keeps_model, flattened_pillow_goes_as_a_duplicate_pair)
   EXPECT_EQ(v.degenerate_faces_left, 0u);
   EXPECT_EQ(v.duplicate_faces_removed, 2u);
   EXPECT_EQ(face_count(m), 12u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }
 
 // Issue 17: ensure_valid_mesh finds duplicate faces by bucketing them on
@@ -589,7 +589,7 @@ TEST(Keeps_model_reserve, reserved_room_changes_no_result)
     if (built.is_isolated(v)) isolated.push_back(v);
   for (auto v : isolated) remove_vertex(v, built);
   built.collect_garbage();
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(built));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(built));
   const std::size_t f0 = face_count(built);
   ASSERT_EQ(f0, 7200u - 3 * 512u);
 
@@ -604,7 +604,7 @@ TEST(Keeps_model_reserve, reserved_room_changes_no_result)
   // what makes the case: the fills outgrow the room reserved up front
   // (clean_scan_mesh.h: 1/32 of the faces + 1024), so the arrays grow mid-run
   ASSERT_GT(rt.holes.faces_added, f0 / 32 + 1024);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(tight));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(tight));
   EXPECT_EQ(border_edges(tight), 240u);  // the sheet's outline only
   EXPECT_EQ(rt.faces_after, face_count(tight));
   EXPECT_TRUE(rt.faces_reconcile());
@@ -634,7 +634,7 @@ TEST(Keeps_model_cli, pentagon_obj_terminates_and_accounts_for_every_face)
   Surface_mesh m;
   ASSERT_EQ(mrepair::read_polygon_mesh(out, m).status, Status::ok);
   EXPECT_EQ(face_count(m), 3u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   std::ifstream r(report);
   const std::string json((std::istreambuf_iterator<char>(r)), std::istreambuf_iterator<char>());
   EXPECT_NE(json.find("\"reconciles\": true"), std::string::npos) << json;

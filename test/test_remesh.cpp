@@ -5,9 +5,9 @@
 
 #include "fixtures.h"
 
+#include <mrepair/internal/cgal_compat.h>
+
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/shape_predicates.h>
@@ -36,7 +36,7 @@ namespace {
 template <class Mesh>
 void expect_valid(const Mesh& m)
 {
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(CGAL::is_triangle_mesh(m));
 }
 
@@ -76,7 +76,7 @@ template <class Mesh>
 double one_sided_distance(const Mesh& out, const Mesh& ref)
 {
   using Prim = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
-  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Prim>>;
+  using Tree = mrepair::internal::Aabb_tree<K, Prim>;
   Tree tree(faces(ref).first, faces(ref).second, ref);
   tree.accelerate_distance_queries();
   double d = 0;

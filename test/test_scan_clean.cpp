@@ -195,7 +195,7 @@ void random_edits(Mesh& m, unsigned seed, int steps)
       st.after_edge_collapse(v);
     }
     ++done[op];
-    ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+    ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
     if (step % 25 == 0) {
       ASSERT_TRUE(stats_equal_fresh(m, st)) << "step " << step;
     }
@@ -440,7 +440,7 @@ TYPED_TEST(Scan_clean, needle_pair_is_collapsed)
   EXPECT_EQ(r.near_degenerate_faces_after, 0u);
   EXPECT_EQ(r.edges_collapsed, 1u);
   EXPECT_EQ(face_count(m), 128u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(stats_equal_fresh(m, st));
   mrepair::Report rep;
   r.to_report(rep);
@@ -468,7 +468,7 @@ TYPED_TEST(Scan_clean, sliver_fan_is_repaired)
   EXPECT_EQ(r.status, mrepair::Status::ok);
   EXPECT_GT(r.edges_collapsed, 10u);
   EXPECT_EQ(face_count(m), 40u - 2 * r.edges_collapsed);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(stats_equal_fresh(m, st));
   // the boundary (diamond v, p0, q, p20) is unchanged: 4 border edges
   EXPECT_EQ(border_halfedge_count(m), 4u);
@@ -490,7 +490,7 @@ TYPED_TEST(Scan_clean, needle_next_to_boundary_keeps_boundary)
   // collapsed onto the boundary vertex, which did not move
   find_vertex(m, 3, 0);
   for (auto v : vertices(m)) EXPECT_GT(std::abs(get(CGAL::vertex_point, m, v).y() - 0.01), 1e-6);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }
 
 TYPED_TEST(Scan_clean, cap_is_repaired)
@@ -507,7 +507,7 @@ TYPED_TEST(Scan_clean, cap_is_repaired)
   EXPECT_GE(r.near_degenerate_faces_before, 1u);
   EXPECT_EQ(r.near_degenerate_faces_after, 0u);
   EXPECT_GE(r.edges_collapsed + r.edges_flipped, 1u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(stats_equal_fresh(m, st));
   for (auto f : faces(m)) EXPECT_GT(st.normal(f)[2], 0.99); // nothing folded
 }
@@ -534,7 +534,7 @@ TYPED_TEST(Scan_clean, flip_fallback_when_collapse_would_pinch_boundary)
   EXPECT_EQ(r.near_degenerate_faces_after, 2u); // the zero edge stays: both its ends are on the boundary
   EXPECT_TRUE(halfedge(t, find_vertex(m, 4, 0), m).second); // the flipped edge
   EXPECT_FALSE(halfedge(find_vertex(m, 3, 0), find_vertex(m, 4, 1), m).second);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(stats_equal_fresh(m, st));
   for (auto f : faces(m)) EXPECT_GT(st.normal(f)[2], 0.99);
 }
@@ -555,7 +555,7 @@ TYPED_TEST(Scan_clean, spike_on_plane_relaxes_into_plane)
   auto p = get(CGAL::vertex_point, m, v);
   EXPECT_NEAR(p.x(), 5, 1e-9);
   EXPECT_NEAR(p.y(), 5, 1e-9);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(stats_equal_fresh(m, st));
 }
 
@@ -583,7 +583,7 @@ TYPED_TEST(Scan_clean, tall_narrow_spike_found_with_defaults)
   EXPECT_EQ(r.spiked_by_height_before, 1u);
   EXPECT_EQ(r.spiked_vertices_after, 0u);
   EXPECT_LT(max_abs_z(m), 1e-9);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   // clean meshes: no spike with the defaults
   Mesh ico = to_mesh<Mesh>(icosphere(3));
   EXPECT_EQ(mrepair::relax_spikes(ico).spiked_vertices_before, 0u);
@@ -615,7 +615,7 @@ TYPED_TEST(Scan_clean, relaxation_counts_match_a_fresh_detection)
   Mesh copy = m;
   EXPECT_EQ(mrepair::relax_spikes(copy).spiked_vertices_before, r.spiked_vertices_after);
   EXPECT_EQ(r.spiked_in_region_after, r.spiked_vertices_after); // the region holds every spike
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(stats_equal_fresh(m, st));
 }
 
@@ -635,7 +635,7 @@ TYPED_TEST(Scan_clean, foldover_is_unfolded)
   EXPECT_GE(r.spiked_vertices_before, 1u);
   EXPECT_EQ(r.spiked_vertices_after, 0u);
   for (auto f : faces(m)) EXPECT_GT(st.normal(f)[2], 0.99);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(stats_equal_fresh(m, st));
 }
 
@@ -651,12 +651,12 @@ TYPED_TEST(Scan_clean, micro_tunnel_is_removed)
   auto rr = mrepair::relax_spikes(m, st, np);
   EXPECT_EQ(rr.status, mrepair::Status::partial); // a tube does not relax
   EXPECT_GE(rr.spiked_in_region_after, 4u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(stats_equal_fresh(m, st));
   auto r = mrepair::remove_unrelaxable_spikes(m, st, np);
   EXPECT_EQ(r.status, mrepair::Status::ok) << r.message;
   EXPECT_EQ(r.spiked_vertices_after, 0u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(no_pinched_vertices(m));
   EXPECT_TRUE(stats_equal_fresh(m, st));
   EXPECT_EQ(component_count(m), 2u); // the two sheets, no tube
@@ -735,7 +735,7 @@ TYPED_TEST(Scan_clean, spike_tracker_matches_whole_mesh_passes)
   EXPECT_GT(removed.faces_removed + fixed.edges_collapsed + fixed.edges_flipped +
                 again.vertices_relaxed,
             0u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(stats_equal_fresh(m, st));
 }
 
@@ -787,7 +787,7 @@ TYPED_TEST(Scan_clean, near_degenerate_with_nothing_to_do)
   EXPECT_EQ(r.status, mrepair::Status::cancelled);
   EXPECT_GT(sv.polls, 0);
   EXPECT_EQ(face_count(m), 128u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }
 
 // Flagged but nothing editable (a lone needle: every collapse would delete
@@ -808,7 +808,7 @@ TYPED_TEST(Scan_clean, near_degenerate_without_an_edit_keeps_its_count)
   EXPECT_EQ(r.near_degenerate_faces_after, 1u);
   EXPECT_EQ(r.status, mrepair::Status::partial);
   EXPECT_EQ(face_count(m), 1u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   auto again = mrepair::repair_near_degenerate_faces(m);
   EXPECT_EQ(again.near_degenerate_faces_before, r.near_degenerate_faces_after);
 }
@@ -823,11 +823,11 @@ TYPED_TEST(Scan_clean, cancellation)
   EXPECT_EQ(r.status, mrepair::Status::cancelled);
   EXPECT_EQ(r.edges_collapsed, 0u);
   EXPECT_GT(sv.polls, 0);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   auto v = find_vertex(m, 5, 5);
   put(get(CGAL::vertex_point, m), v, Point(5, 5, 3));
   auto rr = mrepair::relax_spikes(m, CGAL::parameters::visitor(std::ref(sv)));
   EXPECT_EQ(rr.status, mrepair::Status::cancelled);
   EXPECT_EQ(rr.vertices_relaxed, 0u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }

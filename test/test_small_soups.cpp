@@ -214,7 +214,7 @@ std::string repair_and_check(const Soup& s, const mrepair::Repair_options& o, bo
   std::vector<Point> points = s.points;
   std::vector<Polygon> polygons = s.polygons;
   const mrepair::Repair_result r = mrepair::repair_polygon_soup(points, polygons, m, o);
-  if (!CGAL::is_valid_polygon_mesh(m)) return "the output is not a valid polygon mesh";
+  if (!mrepair_test::valid_polygon_mesh(m)) return "the output is not a valid polygon mesh";
   if (!faces(m).empty() && !CGAL::is_triangle_mesh(m)) return "the output is not a triangle mesh";
   if (r.status == Status::empty_input) {
     if (left_empty) *left_empty = true;
@@ -295,7 +295,7 @@ TYPED_TEST(Small_soups, non_planar_pentagon_of_trimesh_gives_three_triangles)
   const mrepair::Repair_result r = mrepair::repair_polygon_soup(points, polygons, m, mrepair::Repair_options());
   watchdog.stop();
   EXPECT_TRUE(mrepair::succeeded(r.status)) << r.message;
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_TRUE(CGAL::is_triangle_mesh(m));
   EXPECT_EQ(face_count(m), 3u);
   EXPECT_TRUE(r.faces_reconcile());
@@ -306,7 +306,7 @@ TYPED_TEST(Small_soups, non_planar_pentagon_of_trimesh_gives_three_triangles)
   const mrepair::Triangulation_result t = mrepair::triangulate_polygons(pentagon);
   EXPECT_EQ(t.status, Status::ok) << t.message;
   EXPECT_EQ(t.faces_after, 3u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(pentagon));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(pentagon));
   EXPECT_EQ(mrepair::internal::halfedge_structure_defect(pentagon), "");
 }
 
@@ -320,7 +320,7 @@ TYPED_TEST(Small_soups, points_without_polygons_give_an_empty_mesh)
   Mesh m;
   const mrepair::Repair_result r = mrepair::repair_polygon_soup(s.points, s.polygons, m, mrepair::Repair_options());
   EXPECT_EQ(r.status, Status::empty_input) << r.message;
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(mrepair_test::face_count(m), 0u);
   EXPECT_EQ(static_cast<std::size_t>(vertices(m).size()), 0u);
 }
@@ -335,13 +335,13 @@ TYPED_TEST(Small_soups, polygons_that_cannot_be_cut_take_the_soup_path)
   s.polygons = {{0, 1, 2, 3}, {3, 2, 1, 0}};
   Mesh m = to_mesh<Mesh>(s);
   const mrepair::Triangulation_result t = mrepair::triangulate_polygons(m);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(mrepair::internal::halfedge_structure_defect(m), "");
   EXPECT_EQ(t.faces_after, 4u) << t.message;  // the second quad is cut the other way
   Mesh out;
   const mrepair::Repair_result r = mrepair::repair_polygon_soup(s.points, s.polygons, out, options_of(3));
   EXPECT_TRUE(r.failed_stage.empty()) << r.message;
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(out));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(out));
 }
 
 // A face whose next() is broken (what the pentagon was left with) is refused
@@ -390,7 +390,7 @@ TEST(Small_soups_cli, polygonfaces_obj_repairs_to_three_triangles)
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.);
   Surface_mesh m;
   ASSERT_EQ(mrepair::read_polygon_mesh(out, m).status, Status::ok);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(face_count(m), 3u);
 }
 
@@ -428,7 +428,7 @@ TEST(Small_soups_cli, every_small_file_terminates)
       e = "no clean exit (" + std::to_string(code) + ")";
     } else if (code == 0) {
       Surface_mesh m;
-      if (mrepair::read_polygon_mesh(out, m).status != Status::ok || !CGAL::is_valid_polygon_mesh(m))
+      if (mrepair::read_polygon_mesh(out, m).status != Status::ok || !mrepair_test::valid_polygon_mesh(m))
         e = "the output is not a valid mesh";
     }
     if (!e.empty() && ++failures <= 10) ADD_FAILURE() << "file " << k << ": " << e << "\n" << to_off(s);

@@ -75,7 +75,7 @@ void check_output(const Mesh& m, const mrepair::Soup_repair_result& r)
 {
   using halfedge_descriptor = typename boost::graph_traits<Mesh>::halfedge_descriptor;
   using vertex_descriptor = typename boost::graph_traits<Mesh>::vertex_descriptor;
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(face_count(m), r.faces_out);
   EXPECT_EQ(static_cast<std::size_t>(vertices(m).size()), r.vertices_out);
   EXPECT_EQ(r.faces_in, r.faces_out + r.faces_removed());
@@ -495,7 +495,7 @@ TYPED_TEST(Stitch_soup, JoinedTetrahedraLoseTheirInternalWall)
   using Mesh = typename TypeParam::Mesh;
   Mesh m;
   auto r = repair(joined_tetrahedra(), m);
-  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(r.status, mrepair::Status::ok);
   EXPECT_EQ(r.faces_in, 8u);
   EXPECT_EQ(r.removed_internal_walls, 2u);
@@ -674,7 +674,7 @@ TYPED_TEST(Stitch_soup, BadInputIsReportedNotFatal)
   auto re = mrepair::polygon_soup_to_manifold_mesh(no_pts, no_polys, e);
   EXPECT_EQ(re.status, mrepair::Status::empty_input);
   EXPECT_EQ(face_count(e), 0u);
-  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(e));
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(e));
 
   Mesh e2;
   auto re2 = mrepair::polygon_soup_to_manifold_mesh(pts, no_polys, e2);

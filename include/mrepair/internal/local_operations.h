@@ -91,11 +91,16 @@ bool triangulate_hole_checked(PM& pm, typename boost::graph_traits<PM>::halfedge
   bool whole = true;
   try {  // with CGAL's assertions on (debug builds) the same loops throw
 #if CGAL_VERSION_NR >= 1060000000
+    // CGAL 6 first fills a near-planar loop by a 2D constrained Delaunay
+    // triangulation in a fitted plane; mrepair keeps Liepa's minimum-weight
+    // triangulation (the RameshCleaner's choice) for every loop, so that a
+    // patch is the same on CGAL 5.5 and 6, and with an exact kernel too.
     CGAL::Polygon_mesh_processing::triangulate_hole(
         pm, h,
         CGAL::parameters::face_output_iterator(std::back_inserter(added))
             .vertex_point_map(vpm)
-            .use_delaunay_triangulation(use_delaunay));
+            .use_delaunay_triangulation(use_delaunay)
+            .use_2d_constrained_delaunay_triangulation(false));
 #else
     CGAL::Polygon_mesh_processing::triangulate_hole(
         pm, h, std::back_inserter(added),

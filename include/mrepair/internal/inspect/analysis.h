@@ -8,11 +8,9 @@
 #include <mrepair/internal/inspect/self_intersections.h>
 #include <mrepair/internal/inspect/surface_arrays.h>
 #include <mrepair/internal/scan_clean/spike_criterion.h>
+#include <mrepair/internal/cgal_compat.h>
 #include <mrepair/internal/utility.h>
 
-#include <CGAL/AABB_segment_primitive.h>
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #ifdef MREPAIR_INSPECT_VERBOSE
@@ -788,8 +786,8 @@ private:
     }
     if (segs.size() < 2) return;
     using Iterator = std::vector<K::Segment_3>::const_iterator;
-    using Primitive = CGAL::AABB_segment_primitive<K, Iterator>;
-    using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+    using Primitive = Aabb_segment_primitive<K, Iterator>;
+    using Tree = Aabb_tree<K, Primitive>;
     Tree tree(segs.cbegin(), segs.cend());
     tree.build();
     std::vector<Inspect_index> bv;

@@ -10,7 +10,8 @@
 // the MutableFaceGraph primitives (add_edge, add_face, set_next, ...), which
 // is much cheaper than Euler::add_face per polygon. Points not used by any
 // polygon are left out (polygon_soup_to_polygon_mesh would add them as
-// isolated vertices, which CGAL::is_valid_polygon_mesh rejects).
+// isolated vertices, which CGAL 5.5's is_valid_polygon_mesh rejects and
+// mrepair never outputs).
 
 #include <mrepair/internal/utility.h>
 
@@ -226,7 +227,7 @@ void build_mesh(const Soup_topology& t, std::size_t num_points, const std::int64
                 static_cast<typename GT::edges_size_type>(num_edges),
                 static_cast<typename GT::faces_size_type>(num_polygons));
 
-  // only points used by a polygon: an isolated vertex fails is_valid_polygon_mesh
+  // only points used by a polygon: no isolated vertex (5.5's validity check rejects one)
   std::vector<vertex_descriptor> vd(num_points, GT::null_vertex());
   for (std::size_t i = 0; i < num_points; ++i) {
     if (t.out_start[i + 1] == t.out_start[i]) continue;

@@ -5,12 +5,9 @@
 #ifndef MREPAIR_INTERNAL_REMESH_REFERENCE_SURFACE_H
 #define MREPAIR_INTERNAL_REMESH_REFERENCE_SURFACE_H
 
+#include <mrepair/internal/cgal_compat.h>
 #include <mrepair/internal/utility.h>
 
-#include <CGAL/AABB_segment_primitive.h>
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
@@ -54,10 +51,10 @@ class Reference_surface
   using K = CGAL::Epick;
   using Tri_vec = std::vector<K::Triangle_3>;
   using Seg_vec = std::vector<K::Segment_3>;
-  using Tri_prim = CGAL::AABB_triangle_primitive<K, Tri_vec::const_iterator>;
-  using Seg_prim = CGAL::AABB_segment_primitive<K, Seg_vec::const_iterator>;
-  using Tri_tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Tri_prim>>;
-  using Seg_tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Seg_prim>>;
+  using Tri_prim = Aabb_triangle_primitive<K, Tri_vec::const_iterator>;
+  using Seg_prim = Aabb_segment_primitive<K, Seg_vec::const_iterator>;
+  using Tri_tree = Aabb_tree<K, Tri_prim>;
+  using Seg_tree = Aabb_tree<K, Seg_prim>;
 
   Tri_vec tri_geo_;
   Seg_vec seg_geo_;
