@@ -169,31 +169,41 @@ mrepair::bench::Measurement run_mrepair(const std::string& path)
   return m;
 }
 
-mrepair::bench::Measurement run_cgal(const std::string& path)
+// CGAL's isotropic_remeshing of `mesh` with the sharp edges over the feature
+// angle constrained: `remesh(mesh, np, result)` makes the call with its sizing
+// (np: iterations and constrained edges), timed with the edge detection.
+template <typename Remesh>
+mrepair::bench::Measurement run_cgal_remeshing(Mesh mesh, int default_iterations, Remesh&& remesh)
 {
   mrepair::bench::Measurement m;
-  Mesh mesh = load(path);
   const Mesh input = mesh;
-  const double L = target_length(mesh);
-  const int it = int(env("MREPAIR_REMESH_ITERATIONS", 3));
+  const int it = int(env("MREPAIR_REMESH_ITERATIONS", default_iterations));
   const double angle = env("MREPAIR_REMESH_ANGLE", 44);
   auto eif = mesh.add_property_map<Mesh::Edge_index, bool>("e:sharp", false).first;
   CGAL::Real_timer t;
   const std::clock_t c0 = std::clock();  // CPU time too: the machine may be shared
   t.start();
   PMP::detect_sharp_edges(mesh, angle, eif);
-  PMP::isotropic_remeshing(faces(mesh), L, mesh,
-                           CGAL::parameters::number_of_iterations(it).edge_is_constrained_map(eif));
+  remesh(mesh, CGAL::parameters::number_of_iterations(it).edge_is_constrained_map(eif), m.result);
   t.stop();
   const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
   mesh.collect_garbage();
   m.seconds = t.time();
   m.result.add("cpu_seconds", cpu);
-  m.result.add("target_edge_length", L);
   m.result.add("iterations", it);
   m.result.add("input_faces", std::size_t(faces(input).size()));
   quality(mesh, input, m.after);
   return m;
+}
+
+mrepair::bench::Measurement run_cgal(const std::string& path)
+{
+  Mesh mesh = load(path);
+  const double L = target_length(mesh);
+  return run_cgal_remeshing(std::move(mesh), 3, [&](Mesh& tm, const auto& np, mrepair::Report& r) {
+    PMP::isotropic_remeshing(faces(tm), L, tm, np);
+    r.add("target_edge_length", L);
+  });
 }
 
 // adaptive at tolerance eps, then uniform at the adaptive face count (or MREPAIR_REMESH_FACES)
@@ -227,32 +237,16 @@ mrepair::bench::Measurement run_adaptive(const std::string& path)
 // CGAL 6's curvature-adaptive sizing field, on the adaptive run's settings
 mrepair::bench::Measurement run_cgal_adaptive(const std::string& path)
 {
-  mrepair::bench::Measurement m;
   Mesh mesh = load(path);
-  const Mesh input = mesh;
   const double eps = env("MREPAIR_REMESH_TOLERANCE", 0.001 * bbox_diagonal(mesh));
   const double lmax = env("MREPAIR_REMESH_LMAX", 0.05 * bbox_diagonal(mesh));
-  const int it = int(env("MREPAIR_REMESH_ITERATIONS", 10));
-  const double angle = env("MREPAIR_REMESH_ANGLE", 44);
-  auto eif = mesh.add_property_map<Mesh::Edge_index, bool>("e:sharp", false).first;
-  CGAL::Real_timer t;
-  const std::clock_t c0 = std::clock();
-  t.start();
-  PMP::detect_sharp_edges(mesh, angle, eif);
-  PMP::Adaptive_sizing_field<Mesh> field(eps, std::make_pair(eps, lmax), faces(mesh), mesh);
-  PMP::isotropic_remeshing(faces(mesh), field, mesh,
-                           CGAL::parameters::number_of_iterations(it).edge_is_constrained_map(eif));
-  t.stop();
-  const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
-  mesh.collect_garbage();
-  m.seconds = t.time();
-  m.result.add("cpu_seconds", cpu);
-  m.result.add("tolerance", eps);
-  m.result.add("min_edge_length", eps);
-  m.result.add("max_edge_length", lmax);
-  m.result.add("iterations", it);
-  quality(mesh, input, m.after);
-  return m;
+  return run_cgal_remeshing(std::move(mesh), 10, [&](Mesh& tm, const auto& np, mrepair::Report& r) {
+    PMP::Adaptive_sizing_field<Mesh> field(eps, std::make_pair(eps, lmax), faces(tm), tm);
+    PMP::isotropic_remeshing(faces(tm), field, tm, np);
+    r.add("tolerance", eps);
+    r.add("min_edge_length", eps);
+    r.add("max_edge_length", lmax);
+  });
 }
 #endif
 
