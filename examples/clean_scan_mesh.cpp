@@ -1,7 +1,9 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
 // Cleans a scanned mesh with the RameshCleaner pipeline and prints what each
 // step did; also shows the steps used alone.
-// usage: example_clean_scan_mesh [INPUT [OUTPUT]]
+// usage: example_clean_scan_mesh [INPUT [OUTPUT [auto|scan|cad]]]
+// The profile decides the steps (a CAD export keeps its parts and features);
+// without one it is read off the mesh (classify_input, input_profile.h).
 // Without INPUT: a 40x40 grid with a hole, a jagged border ear, a small
 // floating component and an isolated vertex.
 #include <mrepair/clean_boundaries.h>
@@ -9,12 +11,15 @@
 #include <mrepair/fill_small_holes.h>
 #include <mrepair/io.h>
 #include <mrepair/remove_small_components.h>
+#include <mrepair/triangulate_polygons.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/generators.h>
 
 #include <iostream>
+#include <optional>
 #include <vector>
 
 using K = CGAL::Epick;
@@ -25,11 +30,22 @@ int main(int argc, char** argv)
 {
   Mesh mesh;
   if (argc > 1) {
-    mrepair::Io_result io = mrepair::read_polygon_mesh(argv[1], mesh);
-    if (!mrepair::succeeded(io.status)) {
+    // Read as a soup and built with CGAL's builder, as `mrepair clean` and
+    // `mrepair repair` do: a scan's NaN points are accepted (read_polygon_mesh
+    // refuses them), and the pipeline's first step removes them.
+    std::vector<K::Point_3> points;
+    std::vector<std::vector<std::size_t>> polygons;
+    mrepair::Io_result io = mrepair::read_polygon_soup(argv[1], points, polygons);
+    if (io.status != mrepair::Status::ok && io.status != mrepair::Status::non_finite_input) {
       std::cerr << "cannot read " << argv[1] << ": " << io.message << "\n";
       return 1;
     }
+    if (!mrepair::is_polygon_soup_a_polygon_mesh(polygons, points.size())) {
+      std::cerr << argv[1] << ": not a manifold mesh; repair it first (example_repair)\n";
+      return 1;
+    }
+    CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+    mrepair::triangulate_polygons(mesh);
   } else {
     CGAL::make_grid(40, 40, mesh, [](int i, int j) { return K::Point_3(i, j, 0); }, true);
     // a hole: the faces around vertex (20, 20)
@@ -45,9 +61,12 @@ int main(int argc, char** argv)
     mesh.add_vertex(K::Point_3(60, 60, 60));
   }
 
+  std::optional<mrepair::Input_profile> profile;  // absent: the library's default, automatic
+  mrepair::Input_profile chosen;
+  if (argc > 3 && mrepair::parse_input_profile(argv[3], chosen)) profile = chosen;
+
   // The whole pipeline (mesh is collected on return).
-  mrepair::Scan_cleaning_result r =
-      mrepair::clean_scan_mesh(mesh, MP::max_hole_vertices(100, MP::min_component_faces(400)));
+  mrepair::Scan_cleaning_result r = mrepair::clean_scan_mesh(mesh, MP::input_profile(profile));
   mrepair::Report report;
   r.to_report(report);
   std::cout << report.to_text();
@@ -56,20 +75,19 @@ int main(int argc, char** argv)
     return 1;
   }
 
-  // The steps are public functions too; on the cleaned mesh they find nothing left.
-  mrepair::Small_components_result c = mrepair::remove_small_components(mesh);
-  mrepair::Boundary_cleaning_result b = mrepair::clean_boundaries(mesh);
-  mrepair::Hole_filling_result h = mrepair::fill_small_holes(mesh);
-  std::cout << "again: components removed " << c.components_removed << ", bad boundary vertices "
-            << b.bad_vertices_removed << ", holes filled " << h.holes_filled << "\n";
-
   if (argc > 2) {
-    mesh.collect_garbage();
     mrepair::Io_result out = mrepair::write_polygon_mesh(argv[2], mesh);
     if (!mrepair::succeeded(out.status)) {
       std::cerr << "cannot write " << argv[2] << ": " << out.message << "\n";
       return 1;
     }
   }
+
+  // The steps are public functions too; on the cleaned mesh they find nothing left.
+  mrepair::Small_components_result c = mrepair::remove_small_components(mesh);
+  mrepair::Boundary_cleaning_result b = mrepair::clean_boundaries(mesh);
+  mrepair::Hole_filling_result h = mrepair::fill_small_holes(mesh);
+  std::cout << "again: components removed " << c.components_removed << ", bad boundary vertices "
+            << b.bad_vertices_removed << ", holes filled " << h.holes_filled << "\n";
   return 0;
 }

@@ -18,6 +18,7 @@
 #include <mrepair/repair.h>
 #include <mrepair/stitch_soup.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,23 +57,35 @@ constexpr std::size_t max_repair_polygons = 16;
 // test_small_soups.cpp): the defaults of `mrepair repair`, a scan, a given gap
 // tolerance and merge distance, CAD without the automatic tolerance and
 // with no component too small.
-inline mrepair::Repair_options small_soup_repair_options(unsigned k)
+// `count_self_intersections` as given. An option left empty is absent: the
+// library's default.
+inline auto small_soup_repair_options(unsigned k, bool count_self_intersections = true)
 {
-  mrepair::Repair_options o;
+  namespace MP = mrepair::parameters;
+  std::optional<mrepair::Input_profile> profile;
+  std::optional<double> gap, merge;
+  std::optional<std::size_t> min_component;
+  bool automatic_gap = true;
   switch (k % 4) {
-    case 1: o.profile = mrepair::Input_profile::scan; break;
+    case 1: profile = mrepair::Input_profile::scan; break;
     case 2:
-      o.gap_tolerance = 0.3;
-      o.merge_epsilon = 1e-6;
+      gap = 0.3;
+      merge = 1e-6;
       break;
     case 3:
-      o.profile = mrepair::Input_profile::cad;
-      o.automatic_gap_tolerance = false;
-      o.min_component_faces = 1;
+      profile = mrepair::Input_profile::cad;
+      automatic_gap = false;
+      min_component = 1;
       break;
     default: break;
   }
-  return o;
+  return MP::input_profile(
+      profile, MP::gap_tolerance(
+                   gap, MP::merge_epsilon(
+                            merge, MP::automatic_gap_tolerance(
+                                       automatic_gap, MP::min_component_faces(
+                                                          min_component, MP::count_self_intersections(
+                                                                             count_self_intersections))))));
 }
 
 template <class Mesh>
@@ -80,10 +93,9 @@ std::string repair_soup(std::vector<Point> pts, std::vector<Polygon> polys, std:
                         const std::string& what)
 {
   using mrepair::Status;
-  mrepair::Repair_options o = small_soup_repair_options(opt & 3);
-  o.count_self_intersections = (opt & 128) == 0;
   Mesh m;
-  const mrepair::Repair_result r = mrepair::repair_polygon_soup(pts, polys, m, o);
+  const mrepair::Repair_result r =
+      mrepair::repair_polygon_soup(pts, polys, m, small_soup_repair_options(opt & 3, (opt & 128) == 0));
   if (std::string e = check_mesh(m, what, true, false); !e.empty()) return e;
   if (r.status == Status::empty_input) return faces(m).empty() ? std::string() : what + ": empty_input with faces";
   if (!r.failed_stage.empty()) {

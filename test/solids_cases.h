@@ -425,7 +425,7 @@ TYPED_TEST(Solids, tetrahedra_on_a_doubled_face_lose_the_wall)
                                    {0, 1, 2}, {0, 4, 1}, {1, 4, 2}, {2, 4, 0}};
   const std::vector<Point> input = points;
   Mesh m;
-  const mrepair::Repair_result r = mrepair::repair_polygon_soup(points, polygons, m, mrepair::Repair_options());
+  const mrepair::Repair_result r = mrepair::repair_polygon_soup(points, polygons, m);
   EXPECT_TRUE(r.failed_stage.empty()) << r.message;
   EXPECT_TRUE(mrepair::succeeded(r.status)) << r.message;
   EXPECT_EQ(face_count(m), 6u);

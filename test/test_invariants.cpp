@@ -900,10 +900,9 @@ TEST(RepairJob, TriangleArraysGiveTheSameMeshAsPolygonVectors)
   std::vector<Polygon> polygons = s.polygons;
   std::vector<std::array<std::size_t, 3>> triangles;
   for (const Polygon& f : s.polygons) triangles.push_back({f[0], f[1], f[2]});
-  mrepair::Repair_options options;
   Mesh m1, m2;
-  const mrepair::Repair_result a = mrepair::repair_polygon_soup(p1, polygons, m1, options);
-  const mrepair::Repair_result b = mrepair::repair_polygon_soup(p2, triangles, m2, options);
+  const mrepair::Repair_result a = mrepair::repair_polygon_soup(p1, polygons, m1);
+  const mrepair::Repair_result b = mrepair::repair_polygon_soup(p2, triangles, m2);
   EXPECT_EQ(a.status, b.status) << a.message << " / " << b.message;
   EXPECT_EQ(a.before.faces, b.before.faces);
   EXPECT_EQ(a.before.duplicate_faces, b.before.duplicate_faces);
@@ -942,10 +941,13 @@ TEST(RepairJob, InputInspectionBesideTheSoupStageChangesNothing)
   auto run = [&](std::size_t beside, std::vector<std::string>& stages, Mesh& m) {
     std::vector<Point> points = s.points;
     std::vector<Polygon> polygons = s.polygons;
-    mrepair::Repair_options options;
-    options.concurrent_inspection_polygons = beside;
-    options.after_stage = [&](const char* stage, const mrepair::Repair_result&) { stages.push_back(stage); };
-    mrepair::Repair_result r = mrepair::repair_polygon_soup(points, polygons, m, options);
+    namespace MP = mrepair::parameters;
+    mrepair::Repair_result r = mrepair::repair_polygon_soup(
+        points, polygons, m,
+        MP::concurrent_inspection_polygons(
+            beside, MP::after_stage([&](const char* stage, const mrepair::Repair_result&) {
+              stages.push_back(stage);
+            })));
     EXPECT_TRUE(points.empty() && polygons.empty());  // freed once the mesh is built
     std::string json, line;
     std::istringstream lines(r.sections.to_json());
@@ -1005,13 +1007,12 @@ TEST(RepairJob, OutputIsFinalOnlyAfterASuccessfulCleaning)
     Stop_in_cleaning visitor;
     visitor.cancel = cancel;
     std::vector<std::pair<std::string, bool>> seen;
-    mrepair::Repair_options options;
-    options.after_stage = [&](const char* stage, const mrepair::Repair_result& r) {
-      seen.emplace_back(stage, r.output_final);
-    };
     Mesh m;
     const mrepair::Repair_result r = mrepair::repair_polygon_soup(
-        points, polygons, m, options, CGAL::parameters::visitor(std::ref(visitor)));
+        points, polygons, m,
+        mrepair::parameters::after_stage([&](const char* stage, const mrepair::Repair_result& so_far) {
+          seen.emplace_back(stage, so_far.output_final);
+        }).visitor(std::ref(visitor)));
     ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
     ASSERT_FALSE(seen.empty());
     for (const auto& x : seen) {
@@ -1037,13 +1038,13 @@ TEST(RepairJob, OutputIsFinalOnlyAfterASuccessfulCleaning)
   std::vector<Point> points = s.points;
   std::vector<Polygon> polygons = s.polygons;
   std::vector<std::pair<std::string, bool>> seen;
-  mrepair::Repair_options options;
-  options.resolve_intersections = false;
-  options.after_stage = [&](const char* stage, const mrepair::Repair_result& r) {
-    seen.emplace_back(stage, r.output_final);
-  };
+  namespace MP = mrepair::parameters;
   Mesh m;
-  const mrepair::Repair_result r = mrepair::repair_polygon_soup(points, polygons, m, options);
+  const mrepair::Repair_result r = mrepair::repair_polygon_soup(
+      points, polygons, m,
+      MP::resolve_intersections(false, MP::after_stage([&](const char* stage, const mrepair::Repair_result& so_far) {
+                                  seen.emplace_back(stage, so_far.output_final);
+                                })));
   EXPECT_TRUE(r.output_final);
   ASSERT_GE(seen.size(), 2u);
   EXPECT_EQ(seen[seen.size() - 2], std::make_pair(std::string("clean"), true));

@@ -1283,19 +1283,39 @@ TEST(Io_robustness, random_bytes_and_truncations_never_crash)
   }
 }
 
+// Every field with its own value, so that a field reported under another's
+// key, or dropped, fails (a read leaves most counters 0, which would not).
 TEST(Io_report, to_report_has_every_field)
 {
-  Read x = read(write_file("r.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+  mrepair::Io_result x;
+  x.status = mrepair::Status::invalid_index;
+  x.message = "m.ply:7: index out of range";
+  x.format = "ply";
+  x.binary = true;
+  x.points = 11;
+  x.polygons = 12;
+  x.non_finite_points = 13;
+  x.invalid_polygons = 14;
+  x.polygons_skipped = 15;
   mrepair::Report rep;
-  x.r.to_report(rep);
-  EXPECT_EQ(rep.get("status"), "ok");
-  EXPECT_EQ(rep.get("format"), "off");
-  EXPECT_EQ(rep.get("points"), "3");
-  EXPECT_EQ(rep.get("polygons"), "1");
-  EXPECT_EQ(rep.get("non_finite_points"), "0");
-  EXPECT_EQ(rep.get("invalid_polygons"), "0");
-  EXPECT_EQ(rep.get("polygons_skipped"), "0");
-  EXPECT_EQ(rep.get("binary"), "false");
+  x.to_report(rep);
+  EXPECT_EQ(rep.get("status"), mrepair::to_string(x.status));
+  EXPECT_EQ(rep.get("message"), x.message);
+  EXPECT_EQ(rep.get("format"), "ply");
+  EXPECT_EQ(rep.get("binary"), "true");
+  EXPECT_EQ(rep.get("points"), "11");
+  EXPECT_EQ(rep.get("polygons"), "12");
+  EXPECT_EQ(rep.get("non_finite_points"), "13");
+  EXPECT_EQ(rep.get("invalid_polygons"), "14");
+  EXPECT_EQ(rep.get("polygons_skipped"), "15");
+  // and what a read reports: the counts of the file
+  Read r = read(write_file("r.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\nnan 0 0\n3 0 1 2\n3 0 1 9\n"));
+  mrepair::Report read_rep;
+  r.r.to_report(read_rep);
+  EXPECT_EQ(read_rep.get("format"), "off");
+  EXPECT_EQ(read_rep.get("points"), "4");
+  EXPECT_EQ(read_rep.get("non_finite_points"), "1");
+  EXPECT_EQ(read_rep.get("invalid_polygons"), "1");
 }
 
 // ---- the mesh builder agrees with CGAL ----------------------------------------

@@ -1,7 +1,7 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of isotropic_remesh / adaptive_remesh / remesh_to_face_count (issue 7).
 #include <mrepair/adaptive_remesh.h>
-#include <mrepair/internal/remesh/reference_surface.h>
+#include <mrepair/internal/adaptive_remesh/reference_surface.h>
 
 #include "fixtures.h"
 

@@ -676,7 +676,7 @@ TYPED_TEST(Scan_clean, micro_tunnel_is_removed)
 TYPED_TEST(Scan_clean, spike_tracker_matches_whole_mesh_passes)
 {
   using Mesh = typename TypeParam::Mesh;
-  namespace SCI = mrepair::internal::scan_clean;
+  namespace SCI = mrepair::internal::clean_pipeline;
   Mesh m = to_mesh<Mesh>(grid(40, 40));
   auto vpm = get(CGAL::vertex_point, m);
   std::mt19937 rng(7);
@@ -723,7 +723,7 @@ TYPED_TEST(Scan_clean, spike_tracker_matches_whole_mesh_passes)
   for (int i = 0; i < 150; ++i) {
     const auto v = vs[rng() % vs.size()];
     const Point p = get(vpm, v);
-    ops.move_vertex(v, {{p.x(), p.y(), p.z() + 10 * noise(rng)}});
+    ops.move_vertices({v}, {{{p.x(), p.y(), p.z() + 10 * noise(rng)}}});
   }
   same("after moves");
   SCI::Near_degenerate_settings nd;

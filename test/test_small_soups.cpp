@@ -201,14 +201,14 @@ constexpr double case_limit_seconds = 10.;
 constexpr double case_limit_seconds = 1.;
 #endif
 
-mrepair::Repair_options options_of(std::size_t k)
+auto options_of(std::size_t k)
 {
   return mrepair_fuzz::small_soup_repair_options(unsigned(k % 4));
 }
 
 // runs one soup through the whole job; an empty string when the outcome is sound.
-template <class Mesh>
-std::string repair_and_check(const Soup& s, const mrepair::Repair_options& o, bool* left_empty = nullptr)
+template <class Mesh, class Options>
+std::string repair_and_check(const Soup& s, const Options& o, bool* left_empty = nullptr)
 {
   Mesh m;
   std::vector<Point> points = s.points;
@@ -244,7 +244,7 @@ TYPED_TEST(Small_soups, every_small_input_terminates_with_a_valid_mesh)
   const auto t0 = std::chrono::steady_clock::now();
   for (std::size_t k = 0; k < cases; ++k) {
     const Soup s = generate.next_soup();
-    const mrepair::Repair_options o = options_of(k);
+    const auto o = options_of(k);
     watchdog.start("case " + std::to_string(k) + " (options " + std::to_string(k % 4) + ")\n" + to_off(s));
     bool left_empty = false;
     const std::string e = repair_and_check<Mesh>(s, o, &left_empty);
@@ -292,7 +292,7 @@ TYPED_TEST(Small_soups, non_planar_pentagon_of_trimesh_gives_three_triangles)
   Watchdog watchdog(case_limit_seconds);
   watchdog.start(polygonfaces_obj);
   Mesh m;
-  const mrepair::Repair_result r = mrepair::repair_polygon_soup(points, polygons, m, mrepair::Repair_options());
+  const mrepair::Repair_result r = mrepair::repair_polygon_soup(points, polygons, m);
   watchdog.stop();
   EXPECT_TRUE(mrepair::succeeded(r.status)) << r.message;
   EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
@@ -318,7 +318,7 @@ TYPED_TEST(Small_soups, points_without_polygons_give_an_empty_mesh)
   Soup s;
   s.points = {Point(-500, 0, 500), Point(500, 0, -4e155), Point(-4, -4, -4), Point(-4, -4, -4)};
   Mesh m;
-  const mrepair::Repair_result r = mrepair::repair_polygon_soup(s.points, s.polygons, m, mrepair::Repair_options());
+  const mrepair::Repair_result r = mrepair::repair_polygon_soup(s.points, s.polygons, m);
   EXPECT_EQ(r.status, Status::empty_input) << r.message;
   EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   EXPECT_EQ(mrepair_test::face_count(m), 0u);

@@ -17,6 +17,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <unistd.h>
@@ -68,6 +69,23 @@ public:
     if (end == it->second.c_str() || *end != '\0' || !std::isfinite(v))
       throw Usage_error("--" + name + " expects a finite number, got '" + it->second + "'");
     return v;
+  }
+  /// the value of `--name` when given: what the CLI hands the library, which
+  /// holds the default (parameters.h: an empty optional is an absent parameter)
+  std::optional<double> optional_double(const std::string& name) const
+  {
+    if (!has(name)) return std::nullopt;
+    return get_double(name, 0.);
+  }
+  /// the same for a count; `min` is the smallest value accepted
+  std::optional<std::size_t> optional_count(const std::string& name, long long min) const
+  {
+    if (!has(name)) return std::nullopt;
+    const long long v = get_int(name, 0);
+    if (v < min)
+      throw Usage_error("--" + name + " must be at least " + std::to_string(min) + ", got " +
+                        std::to_string(v));
+    return static_cast<std::size_t>(v);
   }
   long long get_int(const std::string& name, long long fallback) const
   {

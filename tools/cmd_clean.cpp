@@ -12,8 +12,7 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
-#include <cmath>
-#include <limits>
+#include <optional>
 #include <sstream>
 
 namespace {
@@ -57,13 +56,6 @@ unsigned parse_steps(const std::string& list)
   return m;
 }
 
-std::size_t get_count(const cli::Arguments& a, const std::string& name, long long fallback)
-{
-  long long v = a.get_int(name, fallback);
-  if (v < 0) throw cli::Usage_error("--" + name + " must not be negative");
-  return static_cast<std::size_t>(v);
-}
-
 int run_clean(int argc, char** argv)
 {
   static const cli::Command self{"clean", "INPUT OUTPUT [options]", "", nullptr};
@@ -79,14 +71,14 @@ int run_clean(int argc, char** argv)
                                                          : unsigned(mrepair::clean_step_all);
   if (a.has("only")) mask = parse_steps(a.get("only"));
   if (a.has("skip")) mask &= ~parse_steps(a.get("skip"));
-  const double spike = a.get_double("spike-angle", std::numeric_limits<double>::quiet_NaN());
-  namespace D = mrepair::defaults;
-  const std::size_t max_hole = get_count(a, "max-hole", D::max_hole_vertices);
-  const std::size_t min_comp = get_count(a, "min-component", D::min_component_faces);
-  const std::size_t iterations = get_count(a, "iterations", 5);
-  const double boundary_angle = a.get_double("boundary-angle", D::boundary_dihedral_angle);
-  const double density = a.get_double("density", 1.);
-
+  // given or absent: the defaults are the library's (definitions.h); without
+  // --max-hole the profile picks the hole limit
+  const std::optional<double> spike = a.optional_double("spike-angle"),
+                              boundary_angle = a.optional_double("boundary-angle"),
+                              density = a.optional_double("density");
+  const std::optional<std::size_t> max_hole = a.optional_count("max-hole", 0),
+                                   min_comp = a.optional_count("min-component", 0),
+                                   iterations = a.optional_count("iterations", 0);
   const bool quiet = a.has("quiet") || a.has("json");
   cli::Progress_printer printer(!quiet);
   mrepair::Report report;
@@ -113,26 +105,23 @@ int run_clean(int argc, char** argv)
     return cli::fail(a.positional[0] + ": " + error);
   }
 
-  // with auto and no step list, the profile picks the steps; without
-  // --max-hole, so does the hole limit (100 for a scan, 500 for cad)
-  auto run_with = [&](const auto& hole_np) {
+  auto run = [&](const auto& steps_np) {
     return mrepair::clean_scan_mesh(
         mesh, MP::input_profile(
-                  profile, MP::min_component_faces(
-                               min_comp, MP::max_clean_iterations(
-                                             iterations, MP::boundary_dihedral_angle(
-                                                             boundary_angle,
-                                                             MP::hole_density_factor(
-                                                                 density,
-                                                                 MP::fair_hole_patches(
-                                                                     a.has("fair"),
-                                                                     MP::spike_angle(spike, hole_np)))))))
+                  profile, MP::max_hole_vertices(
+                               max_hole,
+                               MP::min_component_faces(
+                                   min_comp, MP::max_clean_iterations(
+                                                 iterations, MP::boundary_dihedral_angle(
+                                                                 boundary_angle,
+                                                                 MP::hole_density_factor(
+                                                                     density,
+                                                                     MP::fair_hole_patches(
+                                                                         a.has("fair"),
+                                                                         MP::spike_angle(spike, steps_np))))))))
                   .visitor(std::ref(printer)));
   };
-  auto run = [&](const auto& steps_np) {
-    return a.has("max-hole") ? run_with(MP::max_hole_vertices(max_hole, steps_np)) : run_with(steps_np);
-  };
-  // spike_angle NaN (not given) means "the relax_spikes default" in the pipeline.
+  // with auto and no step list, the profile picks the steps
   const bool profile_picks = profile == mrepair::Input_profile::automatic && !a.has("only") &&
                              !a.has("skip");
   mrepair::Scan_cleaning_result r = profile_picks ? run(CGAL::parameters::default_values())

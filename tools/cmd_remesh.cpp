@@ -2,6 +2,8 @@
 // mrepair remesh INPUT OUTPUT (--edge-length L | --tolerance E | --faces N)
 //                [--feature-angle A] [--iterations K] [--report R.json]
 #include "cli.h"
+
+#include <optional>
 #include "cli_io.h"
 
 #include <mrepair/adaptive_remesh.h>
@@ -39,9 +41,18 @@ int run(int argc, char** argv)
   }
   int modes = a.has("edge-length") + a.has("tolerance") + a.has("faces");
   if (modes != 1) throw cli::Usage_error("give exactly one of --edge-length, --tolerance, --faces");
-  const double angle = a.get_double("feature-angle", 44.);
-  const long long iterations = a.get_int("iterations", 10);
-  if (iterations < 0 || iterations > 1000) throw cli::Usage_error("--iterations must be in [0, 1000]");
+  // given or absent: the defaults are the library's (definitions.h)
+  std::optional<double> feature_angle;
+  if (a.has("feature-angle")) {
+    const double angle = a.get_double("feature-angle", 0.);
+    feature_angle = angle > 0 ? angle : -1.;  // 0: no feature detection
+  }
+  std::optional<int> iterations;
+  if (a.has("iterations")) {
+    const long long k = a.get_int("iterations", 0);
+    if (k < 0 || k > 1000) throw cli::Usage_error("--iterations must be in [0, 1000]");
+    iterations = int(k);
+  }
 
   Mesh mesh;
   mrepair::Io_result io = mrepair::read_polygon_mesh(a.positional[0], mesh);
@@ -54,8 +65,8 @@ int run(int argc, char** argv)
     return cli::fail(a.positional[0] + ": " + error);
 
   cli::Progress_printer printer(!a.has("quiet"));
-  auto np = mrepair::parameters::remesh_feature_angle(angle > 0 ? angle : -1.)
-                .number_of_iterations(int(iterations))
+  auto np = mrepair::parameters::remesh_feature_angle(feature_angle)
+                .number_of_iterations(iterations)
                 .protect_constraints(a.has("protect-features"))
                 .visitor(std::ref(printer));
   mrepair::Remeshing_result r;

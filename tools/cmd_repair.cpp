@@ -16,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/task_group.h>
@@ -76,21 +77,24 @@ int run_repair(int argc, char** argv)
     cli::print_help(self, repair_options());
     return 0;
   }
-  const double gap = a.get_double("close-gaps", 0.);
-  const double merge = a.get_double("merge-epsilon", 0.);
-  if (gap < 0. || merge < 0.) throw cli::Usage_error("--close-gaps and --merge-epsilon must be >= 0");
-  const double spike = a.get_double("spike-angle", std::numeric_limits<double>::quiet_NaN());
-  long long max_hole = a.get_int("max-hole", 100), min_comp = a.get_int("min-component", 400),
-            iterations = a.get_int("iterations", 5);
-  if (max_hole < 1 || min_comp < 1 || iterations < 0)
-    throw cli::Usage_error("--max-hole and --min-component must be >= 1, --iterations >= 0");
-  mrepair::Input_profile profile = mrepair::Input_profile::automatic;
-  if (a.has("profile") && !mrepair::parse_input_profile(a.get("profile"), profile))
-    throw cli::Usage_error("--profile must be auto, scan or cad");
+  // Each option goes to the library as given or absent: the defaults are the
+  // library's (definitions.h), and without --max-hole the profile picks the limit.
+  const std::optional<double> gap = a.optional_double("close-gaps"),
+                              merge = a.optional_double("merge-epsilon"),
+                              spike = a.optional_double("spike-angle");
+  if (gap.value_or(0.) < 0. || merge.value_or(0.) < 0.)
+    throw cli::Usage_error("--close-gaps and --merge-epsilon must be >= 0");
+  const std::optional<std::size_t> max_hole = a.optional_count("max-hole", 1),
+                                   min_comp = a.optional_count("min-component", 1),
+                                   iterations = a.optional_count("iterations", 0);
+  std::optional<mrepair::Input_profile> profile;
+  if (a.has("profile")) {
+    mrepair::Input_profile p;
+    if (!mrepair::parse_input_profile(a.get("profile"), p))
+      throw cli::Usage_error("--profile must be auto, scan or cad");
+    profile = p;
+  }
   const bool quiet = a.has("quiet") || a.has("json");
-  const bool count_si = !a.has("no-self-intersections");
-  const std::size_t hole_n = static_cast<std::size_t>(max_hole),
-                    comp_n = static_cast<std::size_t>(min_comp);
   cli::Progress_printer printer(!quiet);
   // Memory: the input inspection and the soup stage allocate and free
   // arrays of hundreds of MB at 10M faces; served from the heap they reuse
@@ -121,19 +125,6 @@ int run_repair(int argc, char** argv)
   in.to_report(report.section("input"));
   report.section("input").add("seconds", t);
 
-  mrepair::Repair_options options;
-  options.profile = profile;
-  options.gap_tolerance = gap;
-  options.automatic_gap_tolerance = !a.has("close-gaps");  // --close-gaps 0 turns it off
-  options.merge_epsilon = merge;
-  options.spike_angle = spike;
-  if (a.has("max-hole")) options.max_hole_vertices = hole_n;  // else the profile picks the limit
-  options.min_component_faces = comp_n;
-  options.max_clean_iterations = static_cast<std::size_t>(iterations);
-  options.count_self_intersections = count_si;
-  options.count_input_self_intersections = a.has("input-self-intersections");
-  options.resolve_intersections = !a.has("no-resolve-intersections");
-  options.merge_overlapping_shells = !a.has("keep-shells-separate");
   Mesh mesh;
   // The output is final once the cleaning has succeeded (the inspection of
   // the output only reads it): it is written beside that inspection. On the
@@ -157,7 +148,7 @@ int run_repair(int argc, char** argv)
     (void)r;
 #endif
   };
-  options.after_stage = [&](const char* stage, const mrepair::Repair_result& r) {
+  auto after_stage = [&](const char* stage, const mrepair::Repair_result& r) {
     const std::string s = stage;
     if (s == "clean" || s == "resolve_intersections") start_write(r);
     if (s == "soup_to_manifold") {
@@ -190,11 +181,36 @@ int run_repair(int argc, char** argv)
     }
     if (s == "after") print_inspection("after", r.after, quiet);
   };
-  const mrepair::Repair_result r =
-      all_triangles ? mrepair::repair_polygon_soup(points, triangles, mesh, options,
-                                                   CGAL::parameters::visitor(std::ref(printer)))
-                    : mrepair::repair_polygon_soup(points, polygons, mesh, options,
-                                                   CGAL::parameters::visitor(std::ref(printer)));
+  namespace MP = mrepair::parameters;
+  const auto np =
+      MP::input_profile(
+          profile,
+          MP::gap_tolerance(
+              gap, MP::automatic_gap_tolerance(
+                       !a.has("close-gaps"),  // --close-gaps 0 turns it off
+                       MP::merge_epsilon(
+                           merge,
+                           MP::spike_angle(
+                               spike,
+                               MP::max_hole_vertices(
+                                   max_hole,
+                                   MP::min_component_faces(
+                                       min_comp,
+                                       MP::max_clean_iterations(
+                                           iterations,
+                                           MP::count_self_intersections(
+                                               !a.has("no-self-intersections"),
+                                               MP::count_input_self_intersections(
+                                                   a.has("input-self-intersections"),
+                                                   MP::resolve_intersections(
+                                                       !a.has("no-resolve-intersections"),
+                                                       MP::merge_overlapping_shells(
+                                                           !a.has("keep-shells-separate"),
+                                                           MP::after_stage(after_stage)))))))))))))
+          .visitor(std::ref(printer));
+  const mrepair::Repair_result r = all_triangles
+                                       ? mrepair::repair_polygon_soup(points, triangles, mesh, np)
+                                       : mrepair::repair_polygon_soup(points, polygons, mesh, np);
 #ifdef CGAL_LINKED_WITH_TBB
   writing.wait();
 #endif

@@ -3,9 +3,10 @@
 #define MREPAIR_ADAPTIVE_REMESH_H
 
 #include <mrepair/internal/coordinate_range.h>
-#include <mrepair/internal/remesh/driver.h>
+#include <mrepair/internal/adaptive_remesh/driver.h>
 #include <mrepair/internal/bounded_walks.h>
 #include <mrepair/internal/utility.h>
+#include <mrepair/definitions.h>
 #include <mrepair/parameters.h>
 #include <mrepair/remeshing_result.h>
 #include <mrepair/status.h>
@@ -34,13 +35,6 @@
 ///   flip towards valence 6 (4 on boundary); tangential relaxation;
 ///   project onto the input (line vertices onto the input lines)
 /// \endcode
-
-// Algorithm-specific named parameters (defaults in the function docs).
-MREPAIR_ADD_NAMED_PARAMETER(remesh_feature_angle)    // degrees; dihedral angle of a feature edge
-MREPAIR_ADD_NAMED_PARAMETER(remesh_min_edge_length)  // adaptive mode: lower clamp of L
-MREPAIR_ADD_NAMED_PARAMETER(remesh_max_edge_length)  // adaptive mode: upper clamp of L
-MREPAIR_ADD_NAMED_PARAMETER(remesh_gamma)            // adaptive mode: curvature rescaling exponent
-MREPAIR_ADD_NAMED_PARAMETER(remesh_density_factor)   // target lengths are divided by this
 
 namespace mrepair {
 
@@ -72,16 +66,16 @@ Remeshing_result remesh_entry(TriangleMesh& tm, const FaceRange* part, Remesh_mo
   VPM vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                              get_property_map(CGAL::vertex_point, tm));
   Remesh_options o;
-  o.iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 10);
+  o.iterations = internal::get_or(np, CGAL::internal_np::number_of_iterations, 10);
   o.protect = choose_parameter(get_parameter(np, CGAL::internal_np::protect_constraints), false);
   o.relax_lines = choose_parameter(get_parameter(np, CGAL::internal_np::relax_constraints), true);
   o.project = choose_parameter(get_parameter(np, CGAL::internal_np::do_project), true);
-  o.density = choose_parameter(get_parameter(np, internal_np::remesh_density_factor), 1.);
-  o.gamma = choose_parameter(get_parameter(np, internal_np::remesh_gamma), 1.);
+  o.density = internal::get_or(np, internal_np::remesh_density_factor, 1.);
+  o.gamma = internal::get_or(np, internal_np::remesh_gamma, 1.);
   o.has_ecm = !is_default_parameter<NP, CGAL::internal_np::edge_is_constrained_t>::value;
   // with a user edge map, detect sharp edges only when the angle is given too
   o.feature_angle =
-      choose_parameter(get_parameter(np, internal_np::remesh_feature_angle), o.has_ecm ? -1. : 44.);
+      internal::get_or(np, internal_np::remesh_feature_angle, o.has_ecm ? -1. : defaults::remesh_feature_angle);
   using ECM = typename CGAL::internal_np::Lookup_named_param_def<
       CGAL::internal_np::edge_is_constrained_t, NP,
       CGAL::Static_boolean_property_map<typename GT::edge_descriptor, false>>::type;
@@ -110,9 +104,9 @@ Remeshing_result remesh_entry(TriangleMesh& tm, const FaceRange* part, Remesh_mo
       return fail(Status::non_finite_input, "a vertex coordinate is NaN or infinite");
   const double diag = finite_bbox_diagonal(tm, vpm);
   if (!(diag <= max_bbox_diagonal)) return fail(Status::non_finite_input, coordinates_too_large_message);
-  o.min_edge_length = choose_parameter(get_parameter(np, internal_np::remesh_min_edge_length), value);
+  o.min_edge_length = internal::get_or(np, internal_np::remesh_min_edge_length, value);
   o.max_edge_length =
-      choose_parameter(get_parameter(np, internal_np::remesh_max_edge_length), diag / 20.);
+      internal::get_or(np, internal_np::remesh_max_edge_length, diag / 20.);
 
   Visitor_handle<NP> vis(np);
   return remesh_driver<parallel>(tm, part, mode, value, o, vpm, ecm, vcm, vis, res);

@@ -4,6 +4,7 @@
 
 #include <mrepair/cleaning_results.h>
 #include <mrepair/internal/clean_scan_mesh/boundaries.h>
+#include <mrepair/internal/clean_scan_mesh/common.h>
 #include <mrepair/internal/coordinate_range.h>
 #include <mrepair/parameters.h>
 #include <mrepair/remove_small_components.h>
@@ -21,15 +22,6 @@
 /// RameshCleaner 3.3: removal of bad boundary vertices inside a confidence
 /// region around the boundaries, removal of the small components this leaves,
 /// and restricted Laplacian smoothing of the boundary 1-ring.
-
-MREPAIR_ADD_NAMED_PARAMETER(boundary_dihedral_angle)       // degrees (120)
-MREPAIR_ADD_NAMED_PARAMETER(confidence_rings)              // n of the n-ring region (4)
-MREPAIR_ADD_NAMED_PARAMETER(max_boundary_rounds)           // removal rounds (30)
-MREPAIR_ADD_NAMED_PARAMETER(boundary_component_faces)      // components removed in the region (40)
-MREPAIR_ADD_NAMED_PARAMETER(boundary_smoothing_iterations) // (10)
-MREPAIR_ADD_NAMED_PARAMETER(boundary_smoothing_step)       // (0.02)
-MREPAIR_ADD_NAMED_PARAMETER(jagged_loop_turning)           // loops whose jaggedness exceeds this x 2 pi are eroded (1)
-MREPAIR_ADD_NAMED_PARAMETER(boundary_erosion_share)        // share of a loop's region faces removable (0.5)
 
 namespace mrepair {
 
@@ -80,7 +72,8 @@ namespace mrepair {
 /// \return `Boundary_cleaning_result`: status `ok`, `partial` (round cap hit
 ///   with bad vertices left), `non_finite_input` (a region vertex has a
 ///   non-finite coordinate, or the coordinates span more than 1e100; mesh
-///   untouched), `invalid_parameter`, `cancelled`
+///   untouched), `invalid_mesh` (a broken halfedge structure or a face that is
+///   not a triangle; untouched), `invalid_parameter`, `cancelled`
 template <typename PolygonMesh,
           typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Boundary_cleaning_result clean_boundaries(
@@ -93,27 +86,14 @@ Boundary_cleaning_result clean_boundaries(
       CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
       get_property_map(CGAL::vertex_point, pmesh));
   internal::clean_pipeline::Boundary_settings s;
-  s.max_angle = internal::get_or(np, internal_np::boundary_dihedral_angle, s.max_angle);
-  s.rings = internal::get_or(np, internal_np::confidence_rings, s.rings);
-  s.max_rounds = internal::get_or(np, internal_np::max_boundary_rounds, s.max_rounds);
-  s.component_faces = internal::get_or(np, internal_np::boundary_component_faces, s.component_faces);
-  s.smoothing_iterations =
-      internal::get_or(np, internal_np::boundary_smoothing_iterations, s.smoothing_iterations);
-  s.smoothing_step = internal::get_or(np, internal_np::boundary_smoothing_step, s.smoothing_step);
-  s.jagged_loop_turning = internal::get_or(np, internal_np::jagged_loop_turning, s.jagged_loop_turning);
-  s.erosion_share = internal::get_or(np, internal_np::boundary_erosion_share, s.erosion_share);
-
   Boundary_cleaning_result r;
-  if (!(s.max_angle >= 0. && s.max_angle <= 180.) ||
-      !(s.smoothing_step >= 0. && s.smoothing_step <= 1.) ||
-      !(s.erosion_share >= 0. && s.erosion_share <= 1.) || !(s.jagged_loop_turning >= 0.)) {
+  if (!internal::clean_pipeline::read_boundary_settings(np, s)) {
     r.status = Status::invalid_parameter;
     return r;
   }
-  if (internal::coordinates_too_large(pmesh, vpm)) {
-    r.status = Status::non_finite_input;
-    return r;
-  }
+  std::string unused;  // the result has no message
+  r.status = internal::clean_pipeline::check_step_input(pmesh, vpm, true, unused);
+  if (r.status != Status::ok) return r;
   internal::Local_operations<PolygonMesh, decltype(vpm)> ops(pmesh, vpm);
   return internal::clean_pipeline::clean_boundaries_with(ops, s, visitor);
 }

@@ -305,7 +305,49 @@ inline void add_totals(Hole_filling_result& a, const Hole_filling_result& b)
   add_totals<Hole_filling_result>(a, b);
   a.open_holes = b.open_holes;
 }
+/// totals of small-component removal: the largest component was kept in
+/// some run (reported only when true, so it is not in the field list).
+inline void add_totals(Small_components_result& a, const Small_components_result& b)
+{
+  add_totals<Small_components_result>(a, b);
+  a.kept_largest = a.kept_largest || b.kept_largest;
+}
 }  // namespace internal
+
+/// \ingroup mrepair_core
+/// what `ensure_valid_mesh()` found and did.
+struct Validity_result
+{
+  Status status = Status::ok;
+  std::string message;
+  std::size_t degenerate_faces_found = 0;
+  std::size_t zero_length_edges_collapsed = 0;  ///< no vertex moves
+  std::size_t caps_flipped = 0;                 ///< no vertex moves
+  std::size_t border_faces_removed = 0;         ///< zero-area faces removed (on a border, or opening a slit)
+  std::size_t cap_vertices_collapsed = 0;       ///< a cap's middle vertex moved to an end of its edge
+  std::size_t duplicate_faces_removed = 0;
+  std::size_t non_manifold_vertices_split = 0;  ///< vertices added by the split
+  std::size_t faces_removed_degenerate = 0;     ///< faces removed by the collapses and removals above
+  std::size_t degenerate_faces_left = 0;
+  std::size_t operations = 0;
+
+  std::size_t faces_removed() const { return faces_removed_degenerate + duplicate_faces_removed; }
+
+  void to_report(Report& r) const
+  {
+    r.add("status", status);
+    if (!message.empty()) r.add("message", message);
+    r.add("degenerate_faces_found", degenerate_faces_found);
+    r.add("zero_length_edges_collapsed", zero_length_edges_collapsed);
+    r.add("caps_flipped", caps_flipped);
+    r.add("border_faces_removed", border_faces_removed);
+    r.add("cap_vertices_collapsed", cap_vertices_collapsed);
+    r.add("faces_removed_degenerate", faces_removed_degenerate);
+    r.add("duplicate_faces_removed", duplicate_faces_removed);
+    r.add("non_manifold_vertices_split", non_manifold_vertices_split);
+    r.add("degenerate_faces_left", degenerate_faces_left);
+  }
+};
 
 }  // namespace mrepair
 

@@ -25,8 +25,6 @@
 #include <memory>
 #include <string>
 
-MREPAIR_ADD_NAMED_PARAMETER(gap_bridge_max_edges)  // std::size_t: narrow loops bridged at the end (400; 0: none)
-
 namespace mrepair {
 
 /// \ingroup mrepair_gaps

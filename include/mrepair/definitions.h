@@ -38,6 +38,40 @@ constexpr double relative_component_size = 0.01;
 constexpr double boundary_dihedral_angle = 120.;
 /// Laplacian iterations of the boundary smoothing (3.3)
 constexpr std::size_t boundary_smoothing_iterations = 10;
+/// ... and their step (share of the Laplacian applied per iteration)
+constexpr double boundary_smoothing_step = 0.02;
+/// the n of the n-ring region around bad boundary vertices (3.3)
+constexpr std::size_t confidence_rings = 4;
+/// rounds of bad boundary vertex removal (3.3)
+constexpr std::size_t max_boundary_rounds = 30;
+/// components with fewer faces inside a boundary region are removed (3.3)
+constexpr std::size_t boundary_component_faces = 40;
+/// loops whose jaggedness exceeds this x 2 pi are eroded
+constexpr double jagged_loop_turning = 1.;
+/// share of a loop's region faces the boundary erosion may remove
+constexpr double boundary_erosion_share = 0.5;
+/// n of the working region of the spike relaxation (3.7)
+constexpr std::size_t relax_rings = 3;
+/// relaxation iterations (3.7)
+constexpr std::size_t max_relax_iterations = 10;
+/// rounds of unrelaxable spike removal along the new boundary (3.8)
+constexpr std::size_t max_spike_removal_rounds = 3;
+/// degrees a collapse or flip may turn a surviving face (3.6)
+constexpr double max_normal_deviation = 45.;
+/// hole patch edge length / hole border mean edge length (3.5)
+constexpr double hole_density_factor = 1.;
+/// enlargements of an aborted fill (3.4)
+constexpr std::size_t max_hole_enlargements = 3;
+/// loops with more vertices are triangulated in the 3D Delaunay search space
+constexpr std::size_t hole_delaunay_above = 30;
+/// a loop whose cap exceeds this share of its component's area is a border
+constexpr double max_hole_area_share = 0.4;
+/// iterations of the cleaning pipeline (section 4: the paper runs 3 to 5)
+constexpr std::size_t max_clean_iterations = 5;
+/// degrees: a dihedral angle above this makes an edge a feature of the remeshing
+constexpr double remesh_feature_angle = 44.;
+/// polygons up to which `repair_polygon_soup()` inspects the input beside the soup stage
+constexpr std::size_t concurrent_inspection_polygons = 4000000;
 }  // namespace defaults
 
 namespace internal {

@@ -35,13 +35,6 @@
 /// would create a complex edge are enlarged by removing their boundary's
 /// 1-ring and filled again.
 
-MREPAIR_ADD_NAMED_PARAMETER(hole_density_factor)    // patch edge length / hole boundary mean (1)
-MREPAIR_ADD_NAMED_PARAMETER(fair_hole_patches)      // bool, fair patches after refinement (false)
-MREPAIR_ADD_NAMED_PARAMETER(refine_hole_patches)    // bool, refine patches (true)
-MREPAIR_ADD_NAMED_PARAMETER(max_hole_enlargements)  // enlargements of an aborted fill (3)
-MREPAIR_ADD_NAMED_PARAMETER(hole_delaunay_above)    // loops with more vertices use the DT3 search space (30)
-MREPAIR_ADD_NAMED_PARAMETER(max_hole_area_share)    // a loop whose cap exceeds this share of its component's area is a border (0.4)
-
 namespace mrepair {
 
 /// \ingroup mrepair_clean
@@ -91,7 +84,10 @@ namespace mrepair {
 ///   - `visitor`: phase "fill_small_holes"; `stop_requested()` polled between holes
 /// \return `Hole_filling_result`; status `ok`, `partial` (small holes left
 ///   open, listed with their reason), `invalid_parameter`, `non_finite_input`
-///   (coordinates spanning more than 1e100; untouched) or `cancelled`
+///   (coordinates spanning more than 1e100; untouched), `invalid_mesh` (a
+///   broken halfedge structure or a face that is not a triangle; untouched)
+///   or `cancelled`. The input checks are those of every cleaning step
+///   (`check_step_input`, internal/clean_scan_mesh/common.h).
 template <typename PolygonMesh,
           typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Hole_filling_result fill_small_holes(PolygonMesh& pmesh,
@@ -100,36 +96,9 @@ Hole_filling_result fill_small_holes(PolygonMesh& pmesh,
   internal::Visitor_handle<NamedParameters> visitor(np);
   internal::Phase_scope<internal::Visitor_handle<NamedParameters>> phase(visitor,
                                                                          "fill_small_holes");
-  auto vpm = CGAL::parameters::choose_parameter(
-      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
-      get_property_map(CGAL::vertex_point, pmesh));
-  const std::size_t max_vertices =
-      internal::get_or(np, internal_np::max_hole_vertices, defaults::max_hole_vertices);
-  const double density = internal::get_or(np, internal_np::hole_density_factor, 1.);
-  const bool refine = internal::get_or(np, internal_np::refine_hole_patches, true);
-  const bool fair = internal::get_or(np, internal_np::fair_hole_patches, false);
-  const std::size_t enlargements =
-      internal::get_or(np, internal_np::max_hole_enlargements, std::size_t(3));
-  const std::size_t dt_above =
-      internal::get_or(np, internal_np::hole_delaunay_above, std::size_t(30));
-  const double area_share = internal::get_or(np, internal_np::max_hole_area_share, 0.4);
-  if (!(density > 0.) || !std::isfinite(density) || !(area_share >= 0.)) {
-    Hole_filling_result r;
-    r.status = Status::invalid_parameter;
-    return r;
-  }
-  if (internal::coordinates_too_large(pmesh, vpm)) {
-    Hole_filling_result r;
-    r.status = Status::non_finite_input;
-    return r;
-  }
-  internal::Local_operations<PolygonMesh, decltype(vpm)> ops(pmesh, vpm);
-  internal::clean_pipeline::Small_hole_filler<PolygonMesh, decltype(vpm)> filler(
-      ops, max_vertices, density, refine, fair, dt_above, area_share);
-  Status s = filler.run(enlargements, visitor);
-  filler.result.status = s;
+  Hole_filling_result r = internal::clean_pipeline::fill_small_holes_with(pmesh, np, false, visitor);
   visitor.progress(1.);
-  return filler.result;
+  return r;
 }
 
 }  // namespace mrepair

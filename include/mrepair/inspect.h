@@ -8,7 +8,7 @@
 #include <mrepair/internal/inspect/finish.h>
 #include <mrepair/internal/inspect/mesh_arrays.h>
 #include <mrepair/internal/inspect/surface_arrays.h>
-#include <mrepair/internal/scan_clean/spike_criterion.h>
+#include <mrepair/internal/clean_scan_mesh/spike_criterion.h>
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
 #include <mrepair/status.h>
@@ -31,9 +31,6 @@
 /// except for the self-intersection test (a uniform grid of face boxes, then
 /// CGAL's exact predicates with the semantics of `PMP::self_intersections`,
 /// parallel) and the T-junction search (an AABB tree of boundary edges).
-
-// Share of triangle angles below this many degrees (quality figure, 30).
-MREPAIR_ADD_NAMED_PARAMETER(inspect_small_angle)
 
 namespace mrepair {
 

@@ -4,8 +4,8 @@
 
 #include <mrepair/cleaning_results.h>
 #include <mrepair/geometric_statistics.h>
-#include <mrepair/internal/scan_clean/common.h>
-#include <mrepair/internal/scan_clean/spikes_impl.h>
+#include <mrepair/internal/clean_scan_mesh/common.h>
+#include <mrepair/internal/clean_scan_mesh/spikes.h>
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
 #include <mrepair/status.h>
@@ -41,59 +41,8 @@
 /// w(theta) = 0 for theta <= a, min(1, (theta - a)/(b - a)) above; w = 1 for criterion 2
 /// \endcode
 
-// spike_height_factor (2; 0 disables): declared in internal/scan_clean/spike_criterion.h
-MREPAIR_ADD_NAMED_PARAMETER(relax_start_angle)    // a, degrees (spike_angle / 2)
-MREPAIR_ADD_NAMED_PARAMETER(relax_full_angle)     // b, degrees (spike_angle)
-MREPAIR_ADD_NAMED_PARAMETER(relax_rings)          // n of the working region (3)
-MREPAIR_ADD_NAMED_PARAMETER(max_relax_iterations) // (10)
-MREPAIR_ADD_NAMED_PARAMETER(max_spike_removal_rounds) // (3)
-
 namespace mrepair {
 
-namespace internal {
-namespace scan_clean {
-template <typename NP>
-bool read_spike_settings(const NP& np, Spike_settings& s, std::string& message)
-{
-  const double angle = get_or<double>(np, internal_np::spike_angle, defaults::spike_angle);
-  const double a = get_or<double>(np, internal_np::relax_start_angle, angle / 2);
-  const double b = get_or<double>(np, internal_np::relax_full_angle, angle);
-  s.height_factor = get_or<double>(np, internal_np::spike_height_factor, default_spike_height_factor);
-  s.rings = get_or<std::size_t>(np, internal_np::relax_rings, std::size_t(3));
-  s.max_iterations = get_or<std::size_t>(np, internal_np::max_relax_iterations, std::size_t(10));
-  s.max_removal_rounds =
-      get_or<std::size_t>(np, internal_np::max_spike_removal_rounds, std::size_t(3));
-  if (!(angle >= 0 && angle <= 180) || !(a >= 0 && a <= 180) || !(b >= 0 && b <= 180) ||
-      !std::isfinite(s.height_factor)) {
-    message = "spike_angle, relax_start_angle, relax_full_angle in [0,180]; finite spike_height_factor";
-    return false;
-  }
-  s.spike_angle = to_radians(angle);
-  s.start_angle = to_radians(a);
-  s.full_angle = to_radians(b);
-  return true;
-}
-
-// Both spike calls on given statistics: phase, settings, then `worker` on
-// local operations that keep `stats` current.
-template <typename Result, typename Mesh, typename VPM, typename NP, typename Worker>
-Result run_spike_call(Mesh& tm, Geometric_statistics<Mesh, VPM>& stats, const NP& np,
-                      const char* phase_name, Worker&& worker)
-{
-  Visitor_handle<NP> vis(np);
-  Phase_scope<Visitor_handle<NP>> phase(vis, phase_name);
-  Spike_settings s;
-  Result r;
-  if (!read_spike_settings(np, s, r.message)) {
-    r.status = Status::invalid_parameter;
-    return r;
-  }
-  Local_operations<Mesh, VPM> ops(tm, stats.vertex_point_map());
-  ops.keep_current(&stats);
-  return worker(ops, stats, s, vis);
-}
-} // namespace scan_clean
-} // namespace internal
 
 /// \ingroup mrepair_clean
 /// relaxes spiked vertices and foldovers by a dihedral-weighted Laplacian in
@@ -113,9 +62,9 @@ template <typename TriangleMesh, typename VPM, typename CGAL_NP_TEMPLATE_PARAMET
 Spike_relaxation_result relax_spikes(TriangleMesh& tm, Geometric_statistics<TriangleMesh, VPM>& stats,
                                      const CGAL_NP_CLASS& np = parameters::default_values())
 {
-  return internal::scan_clean::run_spike_call<Spike_relaxation_result>(
+  return internal::clean_pipeline::run_spike_call<Spike_relaxation_result>(
       tm, stats, np, "relax_spikes", [](auto& ops, auto& st, const auto& s, auto& vis) {
-        return internal::scan_clean::relax_spikes_with(ops, st, s, vis);
+        return internal::clean_pipeline::relax_spikes_with(ops, st, s, vis);
       });
 }
 
@@ -128,7 +77,7 @@ template <typename TriangleMesh, typename CGAL_NP_TEMPLATE_PARAMETERS>
 Spike_relaxation_result relax_spikes(TriangleMesh& tm,
                                      const CGAL_NP_CLASS& np = parameters::default_values())
 {
-  return internal::scan_clean::with_fresh_statistics(
+  return internal::clean_pipeline::with_fresh_statistics(
       tm, np, Spike_relaxation_result(), [&](auto& stats) { return relax_spikes(tm, stats, np); });
 }
 
@@ -146,9 +95,9 @@ Spike_removal_result remove_unrelaxable_spikes(TriangleMesh& tm,
                                                Geometric_statistics<TriangleMesh, VPM>& stats,
                                                const CGAL_NP_CLASS& np = parameters::default_values())
 {
-  return internal::scan_clean::run_spike_call<Spike_removal_result>(
+  return internal::clean_pipeline::run_spike_call<Spike_removal_result>(
       tm, stats, np, "remove_unrelaxable_spikes", [](auto& ops, auto& st, const auto& s, auto& vis) {
-        return internal::scan_clean::remove_unrelaxable_spikes_with(ops, st, s, vis);
+        return internal::clean_pipeline::remove_unrelaxable_spikes_with(ops, st, s, vis);
       });
 }
 
@@ -158,7 +107,7 @@ template <typename TriangleMesh, typename CGAL_NP_TEMPLATE_PARAMETERS>
 Spike_removal_result remove_unrelaxable_spikes(TriangleMesh& tm,
                                                const CGAL_NP_CLASS& np = parameters::default_values())
 {
-  return internal::scan_clean::with_fresh_statistics(
+  return internal::clean_pipeline::with_fresh_statistics(
       tm, np, Spike_removal_result(), [&](auto& stats) { return remove_unrelaxable_spikes(tm, stats, np); });
 }
 

@@ -3,6 +3,7 @@
 #define MREPAIR_REMOVE_SMALL_COMPONENTS_H
 
 #include <mrepair/cleaning_results.h>
+#include <mrepair/internal/clean_scan_mesh/common.h>
 #include <mrepair/internal/clean_scan_mesh/small_components.h>
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
@@ -19,9 +20,6 @@
 /// region growing that stops as soon as a component reaches the threshold, so
 /// that large components cost little. "Small" is also relative to the
 /// largest component, which is never removed.
-
-MREPAIR_ADD_NAMED_PARAMETER(relative_component_size)  // share of the largest component (0.01)
-MREPAIR_ADD_NAMED_PARAMETER(open_debris_only)         // bool: only open bits next to a closed largest component (false)
 
 namespace mrepair {
 
@@ -51,8 +49,10 @@ namespace mrepair {
 ///   - `vertex_point_map` (default: internal point map), for the areas
 ///   - `visitor` (default `Default_visitor`): phase "remove_small_components";
 ///     `stop_requested()` polled before any change
-/// \return `Small_components_result`; `status` is `ok`, `cancelled` or
-///   `invalid_parameter` (threshold 0, share outside [0, 1]); `pmesh` stays valid
+/// \return `Small_components_result`; `status` is `ok`, `cancelled`,
+///   `invalid_parameter` (threshold 0, share outside [0, 1]), `invalid_mesh`
+///   (a broken halfedge structure) or `non_finite_input` (coordinates spanning
+///   more than 1e100), the last two with the mesh untouched; `pmesh` stays valid
 template <typename PolygonMesh,
           typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Small_components_result remove_small_components(
@@ -73,6 +73,9 @@ Small_components_result remove_small_components(
     r.status = Status::invalid_parameter;
     return r;
   }
+  std::string unused;  // the result has no message; polygon meshes are fine here
+  r.status = internal::clean_pipeline::check_step_input(pmesh, vpm, false, unused);
+  if (r.status != Status::ok) return r;
   if (visitor.stop_requested()) {
     r.status = Status::cancelled;
     return r;

@@ -43,57 +43,6 @@
 
 namespace mrepair {
 
-struct Repair_result;
-
-/// \ingroup mrepair_clean
-/// the options of `repair_polygon_soup()`, with the defaults of `mrepair repair`.
-struct Repair_options
-{
-  Input_profile profile = Input_profile::automatic;  ///< which cleaning steps apply
-  /// close boundary gaps narrower than this (model units); 0: see `automatic_gap_tolerance`
-  double gap_tolerance = 0.;
-  /// with `gap_tolerance` 0: on an input of the `cad` profile (chosen or
-  /// classified), close gaps with the tolerance of `estimate_gap_tolerance()`;
-  /// scans are left alone. false: no gap closing unless `gap_tolerance` > 0.
-  bool automatic_gap_tolerance = true;
-  double merge_epsilon = 0.;           ///< merge soup points closer than this before stitching
-  /// dihedral angle (degrees) of a spiked vertex; NaN: the default of
-  /// `relax_spikes()` for cleaning and 100 for the inspections
-  double spike_angle = std::numeric_limits<double>::quiet_NaN();
-  /// holes with fewer boundary vertices are filled; 0: the profile decides
-  /// (100 scan, 500 cad) and the inspections count against 100
-  std::size_t max_hole_vertices = 0;
-  std::size_t min_component_faces = 400;   ///< components with fewer faces are removed
-  std::size_t max_clean_iterations = 5;    ///< cleaning iteration cap
-  /// after the cleaning, `resolve_intersections()`: a shell crossing itself
-  /// is repaired locally, overlapping closed shells become their union, and
-  /// small holes it leaves or that were kept open beside a crossing are
-  /// filled. Meshes without crossing and nested shells pay the detection only.
-  bool resolve_intersections = true;
-  /// false: crossing closed shells are kept apart (no union; their crossings stay)
-  bool merge_overlapping_shells = true;
-  /// count self-intersecting face pairs in the inspection of the output: the
-  /// evidence that the repair left none (about 1 s of a 1M-face job)
-  bool count_self_intersections = true;
-  /// ... and in the inspection of the input. Off by default: on a 1M-face
-  /// scan it took 1.9 s of a 6.8 s job (the soup's pairs are informative only:
-  /// the cleaning does not aim at them), so the report costs less than the repair.
-  bool count_input_self_intersections = false;
-  /// up to this many input polygons, the inspection of the input runs beside
-  /// the soup stage: both only read the input, and the soup stage is mostly
-  /// sequential, so the inspection uses the cores it leaves idle (TBB). Above
-  /// it they run one after the other, so that their memory peaks do not add
-  /// up (10M faces: 1.1 and 1.0 GB beside the 0.6 GB input). 0: never.
-  std::size_t concurrent_inspection_polygons = 4000000;
-  /// called after the stages "before" (input inspected), "soup_to_manifold"
-  /// (the mesh built, the soup's memory freed), "close_gaps" (when it ran),
-  /// "clean" (profile chosen), "resolve_intersections" (when it ran) and
-  /// "after" (output inspected), with the result
-  /// so far: lets a caller print while the job runs, or hand freed memory back
-  /// to the system
-  std::function<void(const char* stage, const Repair_result& so_far)> after_stage;
-};
-
 /// \ingroup mrepair_clean
 /// what `repair_polygon_soup()` did.
 struct Repair_result
@@ -166,19 +115,75 @@ struct Repair_result
 ///   the peak memory down. Non-finite points and polygons with out-of-range
 ///   indices are repaired away (counted in the report).
 /// \param out the output mesh, cleared first
-/// \param options see `Repair_options`
-/// \param np optional: `visitor` (`Default_visitor`): phases "soup_to_manifold",
-///   "close_gaps" and those of `clean_scan_mesh()`
+/// \param np optional named parameters (an empty `std::optional` value counts
+///   as absent, so a front end passes what its user gave as it is); each
+///   stage gets `np` whole, so the parameters of `polygon_soup_to_manifold_mesh()`,
+///   `close_gaps()`, `clean_scan_mesh()` (and its steps) and
+///   `resolve_intersections()` reach them. The job's own:
+///   - `input_profile` (`Input_profile`, default `automatic`: which cleaning steps apply)
+///   - `gap_tolerance` (double, model units, default 0): close boundary gaps
+///     narrower than this; 0: see `automatic_gap_tolerance`
+///   - `automatic_gap_tolerance` (bool, default true): with no gap tolerance,
+///     an input of the `cad` profile (chosen or classified) gets its gaps
+///     closed with the tolerance of `estimate_gap_tolerance()`; scans are left
+///     alone. false: no gap closing unless `gap_tolerance` > 0
+///   - `merge_epsilon` (double, default 0): soup points closer than this are merged
+///   - `spike_angle` (degrees, default 100), `max_hole_vertices` (default: the
+///     profile's, 100 for a scan and 500 for cad; the inspections count
+///     against 100), `min_component_faces` (400), `max_clean_iterations` (5):
+///     the cleaning's, also the inspections' thresholds
+///   - `resolve_intersections` (bool, default true): after the cleaning,
+///     `resolve_intersections()`: a shell crossing itself is repaired locally,
+///     overlapping closed shells become their union, and the small holes it
+///     leaves or that were kept open beside a crossing are filled. Meshes
+///     without crossings and nested shells pay the detection only.
+///   - `merge_overlapping_shells` (bool, default true): false keeps crossing
+///     closed shells apart (no union; their crossings stay)
+///   - `count_self_intersections` (bool, default true): count self-intersecting
+///     face pairs in the inspection of the output, the evidence that the
+///     repair left none (about 1 s of a 1M-face job)
+///   - `count_input_self_intersections` (bool, default false): ... and in the
+///     inspection of the input (1.9 s of a 6.8 s job at 1M faces: the soup's
+///     pairs are informative only, the cleaning does not aim at them)
+///   - `concurrent_inspection_polygons` (std::size_t, default 4,000,000): up
+///     to this many input polygons the inspection of the input runs beside
+///     the soup stage (both only read the input, and the soup stage is mostly
+///     sequential); above, one after the other, so that their memory peaks do
+///     not add up (10M faces: 1.1 and 1.0 GB beside the 0.6 GB input); 0: never
+///   - `after_stage` (callable `void(const char* stage, const Repair_result&
+///     so_far)`): called after the stages "before" (input inspected),
+///     "soup_to_manifold" (the mesh built, the soup's memory freed),
+///     "close_gaps" (when it ran), "clean" (profile chosen),
+///     "resolve_intersections" (when it ran) and "after" (output inspected):
+///     lets a caller print while the job runs, write `out` once
+///     `output_final`, or hand freed memory back to the system
+///   - `visitor` (`Default_visitor`): phases "soup_to_manifold", "close_gaps"
+///     and those of `clean_scan_mesh()`
 /// \return `Repair_result`; `out` is a valid mesh whatever the status
 template <typename Point, typename Polygon, typename PolygonMesh,
           typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygon>& polygons,
-                                  PolygonMesh& out, const Repair_options& options,
+                                  PolygonMesh& out,
                                   const NamedParameters& np = CGAL::parameters::default_values())
 {
   namespace MP = mrepair::parameters;
+  using internal::get_or;
   using Handle = internal::Visitor_handle<NamedParameters>;
   Handle visitor(np);
+  // The job's own settings; the cleaning's and the other stages' are read by
+  // them from `np`, which each stage gets whole.
+  const Input_profile profile = get_or(np, internal_np::input_profile, Input_profile::automatic);
+  const double gap = get_or(np, internal_np::gap_tolerance, 0.),
+               merge = get_or(np, internal_np::merge_epsilon, 0.),
+               spike = get_or(np, internal_np::spike_angle, defaults::spike_angle);
+  const bool automatic_gap = get_or(np, internal_np::automatic_gap_tolerance, true),
+             resolve = get_or(np, internal_np::resolve_intersections, true),
+             count_output_pairs = get_or(np, internal_np::count_self_intersections, true),
+             count_input_pairs = get_or(np, internal_np::count_input_self_intersections, false);
+  const std::size_t concurrent_below = get_or(np, internal_np::concurrent_inspection_polygons,
+                                              defaults::concurrent_inspection_polygons);
+  const std::function<void(const char*, const Repair_result&)> after_stage =
+      get_or(np, internal_np::after_stage, std::function<void(const char*, const Repair_result&)>());
   // the soup stage and the gap closing report progress and poll stop, but
   // their inner phases are not the job's
   internal::clean_pipeline::Forwarding_visitor<Handle> forward(&visitor);
@@ -194,29 +199,24 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   };
   auto stop_requested = [&] { return visitor.stop_requested(); };
   auto stage_done = [&](const char* stage) {
-    if (options.after_stage) options.after_stage(stage, result);
+    if (after_stage) after_stage(stage, result);
   };
 
-  const double gap = options.gap_tolerance, merge = options.merge_epsilon,
-               spike = options.spike_angle;
-  // the other options are checked by the stages that use them
-  if (!(gap >= 0.) || !std::isfinite(gap) || !(merge >= 0.) || !std::isfinite(merge) ||
-      options.min_component_faces < 1)
+  // the inspections count against the cleaning's thresholds (the profile's
+  // hole limit when one is given, else the scan's)
+  const std::size_t hole_n = get_or(np, internal_np::max_hole_vertices, defaults::max_hole_vertices),
+                    comp_n = get_or(np, internal_np::min_component_faces, defaults::min_component_faces);
+  // the other settings are checked by the stages that use them
+  if (!(gap >= 0.) || !std::isfinite(gap) || !(merge >= 0.) || !std::isfinite(merge) || comp_n < 1)
     return fail("options", Status::invalid_parameter,
                 "gap_tolerance and merge_epsilon must be finite and >= 0, min_component_faces >= 1");
-  const bool hole_given = options.max_hole_vertices > 0;
-  const std::size_t hole_n = hole_given ? options.max_hole_vertices : 100,
-                    comp_n = options.min_component_faces;
-
-  const double inspect_spike = std::isnan(spike) ? 100. : spike;  // inspect's default is 100
   // Each stage's wall time goes into its report section ("seconds"): the
   // phase breakdown of the whole job.
   internal::Stopwatch stage_clock;
   auto thresholds = MP::max_hole_vertices(
-      hole_n, MP::min_component_faces(comp_n, MP::spike_angle(
-                                                  inspect_spike, MP::count_self_intersections(
-                                                                     options.count_self_intersections &&
-                                                                     options.count_input_self_intersections))));
+      hole_n, MP::min_component_faces(
+                  comp_n, MP::spike_angle(spike, MP::count_self_intersections(count_output_pairs &&
+                                                                                 count_input_pairs))));
   double before_seconds = 0.;
   auto inspect_input = [&] {
     internal::Stopwatch clock;
@@ -233,7 +233,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   // `concurrent_inspection_polygons`); `waiting` outlives neither.
 #ifdef CGAL_LINKED_WITH_TBB
   tbb::task_group waiting;
-  const bool beside = polygons.size() <= options.concurrent_inspection_polygons;
+  const bool beside = polygons.size() <= concurrent_below;
   if (beside) waiting.run(inspect_input);
 #else
   const bool beside = false;
@@ -277,7 +277,7 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   auto soup_to_manifold = [&](auto& soup_points, auto& soup_polygons) {
     internal::Phase_scope<Handle> phase(visitor, "soup_to_manifold");
     s = polygon_soup_to_manifold_mesh(soup_points, soup_polygons, out,
-                                      MP::merge_epsilon(merge).visitor(std::ref(forward)));
+                                      np.visitor(std::ref(forward)));
   };
   if (direct)
     CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, out);
@@ -339,8 +339,8 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   // the cleaning reuses the classification while the mesh is unchanged
   Input_classification classification;
   bool classified = false;
-  if (!(gap > 0.) && options.automatic_gap_tolerance) {
-    classification = classify_input(out, MP::input_profile(options.profile));
+  if (!(gap > 0.) && automatic_gap) {
+    classification = classify_input(out, MP::input_profile(profile));
     classified = true;
     automatic = classification.profile == Input_profile::cad;
   }
@@ -351,8 +351,8 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
     const std::size_t f0 = internal::face_count(out);
     {
       internal::Phase_scope<Handle> phase(visitor, "close_gaps");
-      g = gap > 0. ? close_gaps(out, gap, CGAL::parameters::visitor(std::ref(forward)))
-                   : close_gaps(out, automatic_gap_tolerance, CGAL::parameters::visitor(std::ref(forward)));
+      g = gap > 0. ? close_gaps(out, gap, np.visitor(std::ref(forward)))
+                   : close_gaps(out, automatic_gap_tolerance, np.visitor(std::ref(forward)));
     }
     result.gaps_closed = true;
     result.gaps = g;
@@ -366,26 +366,16 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
     if (!succeeded(g.status)) return fail("close_gaps", g.status, "");
   }
 
-  // 3. The cleaning pipeline, with the steps of the input's profile.
-  auto clean = [&](const auto& np_hole) {
-    const Input_classification* known = classified ? &classification : nullptr;
-    return clean_scan_mesh(
-        out, MP::min_component_faces(
-                 comp_n, MP::max_clean_iterations(
-                             options.max_clean_iterations,
-                             MP::spike_angle(spike, MP::input_profile(
-                                                        options.profile,
-                                                        MP::input_classification(known, np_hole)))))
-                 .visitor(std::ref(visitor.get())));
-  };
-  // without a hole limit the profile picks it
-  result.clean = hole_given ? clean(MP::max_hole_vertices(hole_n))
-                            : clean(CGAL::parameters::default_values());
+  // 3. The cleaning pipeline, with the steps of the input's profile; without
+  // a hole limit the profile picks it. It reuses the classification while the
+  // mesh is unchanged.
+  const Input_classification* known = classified ? &classification : nullptr;
+  result.clean = clean_scan_mesh(out, MP::input_classification(known, np));
   const Scan_cleaning_result& c = result.clean;
   c.to_report(report.section("clean"));
   const bool cleaned = succeeded(c.status) || c.status == Status::empty_input;
   // the solid repair, when it runs, edits `out` after this callback
-  result.output_final = cleaned && !(options.resolve_intersections && c.status != Status::empty_input);
+  result.output_final = cleaned && !(resolve && c.status != Status::empty_input);
   stage_done("clean");
   if (!cleaned) return fail("clean", c.status, c.message);
   for (std::size_t i = 0; i < number_of_clean_steps; ++i) {
@@ -395,15 +385,16 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
   // 4. Solid repair: the crossings the cleaning left, then the holes beside
   // them (the hole filler refuses a patch into a surface that crosses itself).
   bool crossings_known = false;
-  if (options.resolve_intersections && c.status != Status::empty_input) {
+  if (resolve && c.status != Status::empty_input) {
     stage_clock.restart();
     const bool cad = c.profile.profile == Input_profile::cad;
     Intersection_repair_result& ir = result.intersections;
     {
       internal::Phase_scope<Handle> phase(visitor, "resolve_intersections");
+      // the cad profile's patches keep to the loop (no refinement), as its hole filling
       ir = resolve_intersections(
-          out, MP::merge_overlapping_shells(options.merge_overlapping_shells,
-                                            MP::refine_hole_patches(!cad, CGAL::parameters::visitor(std::ref(forward)))));
+          out, MP::refine_hole_patches(get_or(np, internal_np::refine_hole_patches, !cad), np)
+                   .visitor(std::ref(forward)));
     }
     result.intersections_resolved = true;
     removed.emplace_back("resolve_intersections_local", ir.local_faces_removed);
@@ -416,12 +407,9 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
     // its last count is of its output (taken after its last change)
     crossings_known = succeeded(ir.status);
     if (changed && succeeded(ir.status)) {
-      // the profile's hole limit and way of filling (clean_scan_mesh.h)
-      const std::size_t limit = hole_given ? hole_n : cad ? defaults::max_cad_hole_vertices : hole_n;
+      // with the profile's hole limit and way of filling, as the cleaning's
       Hole_filling_result& h = result.holes_after_intersections;
-      h = fill_small_holes(out, MP::max_hole_vertices(
-                                    limit, MP::refine_hole_patches(
-                                               !cad, MP::max_hole_enlargements(cad ? std::size_t(0) : std::size_t(3)))));
+      h = internal::clean_pipeline::fill_small_holes_of_profile(out, np, cad);
       removed.emplace_back("fill_holes_after_intersections", h.enlargement_faces_removed);
       added.emplace_back("fill_holes_after_intersections", h.faces_added);
       h.to_report(rr.section("holes_filled_after"));
@@ -450,11 +438,11 @@ Repair_result repair_polygon_soup(std::vector<Point>& points, std::vector<Polygo
 
   stage_clock.restart();
   // the solid repair's last count stands when nothing changed the mesh since
-  const bool count_again = options.count_self_intersections && !crossings_known;
+  const bool count_again = count_output_pairs && !crossings_known;
   result.after = inspect(
       out, MP::max_hole_vertices(
                hole_n, MP::min_component_faces(
-                           comp_n, MP::spike_angle(inspect_spike, MP::count_self_intersections(count_again)))));
+                           comp_n, MP::spike_angle(spike, MP::count_self_intersections(count_again)))));
   // (then even without count_self_intersections: the step counted anyway)
   if (crossings_known) {
     result.after.self_intersections_counted = true;

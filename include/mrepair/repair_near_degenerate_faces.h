@@ -4,8 +4,8 @@
 
 #include <mrepair/cleaning_results.h>
 #include <mrepair/geometric_statistics.h>
-#include <mrepair/internal/scan_clean/common.h>
-#include <mrepair/internal/scan_clean/near_degenerate_impl.h>
+#include <mrepair/internal/clean_scan_mesh/common.h>
+#include <mrepair/internal/clean_scan_mesh/near_degenerate_faces.h>
 #include <mrepair/parameters.h>
 #include <mrepair/report.h>
 #include <mrepair/status.h>
@@ -34,40 +34,8 @@
 ///     flip passes the same normal test and raises the minimum angle
 /// \endcode
 
-MREPAIR_ADD_NAMED_PARAMETER(max_normal_deviation)  // degrees; collapse/flip normal test (45)
-MREPAIR_ADD_NAMED_PARAMETER(max_degenerate_operations) // cap on collapses + flips
-
 namespace mrepair {
 
-namespace internal {
-namespace scan_clean {
-// `max_degenerate_operations` defaults to 3 x edges + 100: collapses alone
-// cannot exceed |E|; the cap bounds flip sequences.
-template <typename NP>
-bool read_near_degenerate_settings(const NP& np, std::size_t edge_count,
-                                   Near_degenerate_settings& s, std::string& message)
-{
-  Near_degenerate_criterion& k = s.criterion;
-  k.zero_edge_factor = get_or<double>(np, internal_np::zero_edge_factor, defaults::zero_edge_factor);
-  k.skinny_edge_factor =
-      get_or<double>(np, internal_np::skinny_edge_factor, defaults::skinny_edge_factor);
-  const double skinny_deg = get_or<double>(np, internal_np::skinny_angle, defaults::skinny_angle);
-  const double dev_deg = get_or<double>(np, internal_np::max_normal_deviation, 45.0);
-  s.max_operations =
-      get_or<std::size_t>(np, internal_np::max_degenerate_operations, 3 * edge_count + 100);
-  if (!(k.zero_edge_factor >= 0) || !std::isfinite(k.zero_edge_factor) ||
-      !(k.skinny_edge_factor >= 0) || !std::isfinite(k.skinny_edge_factor) ||
-      !(skinny_deg >= 0 && skinny_deg <= 180) || !(dev_deg > 0 && dev_deg <= 180)) {
-    message = "zero_edge_factor, skinny_edge_factor >= 0; skinny_angle in [0,180]; "
-              "max_normal_deviation in (0,180]";
-    return false;
-  }
-  k.skinny_angle = to_radians(skinny_deg);
-  s.max_normal_deviation = to_radians(dev_deg);
-  return true;
-}
-} // namespace scan_clean
-} // namespace internal
 
 /// \ingroup mrepair_clean
 /// removes near-degenerate faces (needles, caps, slivers) by safe edge
@@ -88,7 +56,7 @@ Near_degenerate_faces_result repair_near_degenerate_faces(
     TriangleMesh& tm, Geometric_statistics<TriangleMesh, VPM>& stats,
     const CGAL_NP_CLASS& np = parameters::default_values())
 {
-  namespace SC = internal::scan_clean;
+  namespace SC = internal::clean_pipeline;
   internal::Visitor_handle<CGAL_NP_CLASS> vis(np);
   internal::Phase_scope<internal::Visitor_handle<CGAL_NP_CLASS>> phase(vis, "near_degenerate_faces");
   SC::Near_degenerate_settings s;
@@ -113,7 +81,7 @@ Near_degenerate_faces_result repair_near_degenerate_faces(
 {
   Near_degenerate_faces_result failed;  // the face counts of an untouched mesh
   failed.faces_before = failed.faces_after = internal::face_count(tm);
-  return internal::scan_clean::with_fresh_statistics(
+  return internal::clean_pipeline::with_fresh_statistics(
       tm, np, failed, [&](auto& stats) { return repair_near_degenerate_faces(tm, stats, np); });
 }
 

@@ -29,9 +29,6 @@
 #include <utility>
 #include <vector>
 
-MREPAIR_ADD_NAMED_PARAMETER(merge_overlapping_shells)  // bool: union of overlapping closed shells (true)
-MREPAIR_ADD_NAMED_PARAMETER(max_local_rounds)          // rounds of the local repair of a shell crossing itself (3)
-
 namespace mrepair {
 
 /// \ingroup mrepair_clean

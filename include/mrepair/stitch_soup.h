@@ -49,10 +49,6 @@
 
 #include <cmath>
 
-MREPAIR_ADD_NAMED_PARAMETER(snap_epsilon)     // absolute stitch distance for boundary edges
-MREPAIR_ADD_NAMED_PARAMETER(keep_two_sided)   // bool: keep both orientations of a face
-MREPAIR_ADD_NAMED_PARAMETER(orient_outward)   // bool: closed components bound a volume
-
 namespace mrepair {
 
 namespace internal {

@@ -30,7 +30,7 @@ int main(int argc, char** argv)
   CGAL::Surface_mesh<Point> mesh;
   const auto t0 = std::chrono::steady_clock::now();
   const mrepair::Repair_result r =
-      mrepair::repair_polygon_soup(points, polygons, mesh, mrepair::Repair_options());
+      mrepair::repair_polygon_soup(points, polygons, mesh);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("%.4f %s %zu\n", seconds, mrepair::to_string(r.status),

@@ -37,14 +37,16 @@ def inspect(
     V: Vertices,
     F: Faces,
     *,
-    spike_angle: float = 100.0,
-    small_hole: int = 100,
-    small_component: int = 400,
+    spike_angle: Optional[float] = None,
+    small_hole: Optional[int] = None,
+    small_component: Optional[int] = None,
     t_junction_tolerance: Optional[float] = None,
     self_intersections: bool = True,
     progress: Progress = None,
 ) -> Report:
-    """counts every defect mrepair fixes and the quality figures (`mrepair inspect --json`)."""
+    """counts every defect mrepair fixes and the quality figures (`mrepair inspect --json`).
+
+    None: the library's default (doc/defects.md)."""
 
 def soup_to_manifold(
     V: Vertices,
@@ -81,11 +83,11 @@ def clean(
     only: Union[None, str, Iterable[str]] = None,
     skip: Union[None, str, Iterable[str]] = None,
     spike_angle: Optional[float] = None,
-    max_hole: int = 100,
-    min_component: int = 400,
-    iterations: int = 5,
-    boundary_angle: float = 120.0,
-    density: float = 1.0,
+    max_hole: Optional[int] = None,
+    min_component: Optional[int] = None,
+    iterations: Optional[int] = None,
+    boundary_angle: Optional[float] = None,
+    density: Optional[float] = None,
     fair: bool = False,
     progress: Progress = None,
 ) -> Result:
@@ -96,13 +98,16 @@ def repair(
     F: Faces,
     *,
     profile: str = "auto",
-    close_gaps: float = 0.0,
-    merge_epsilon: float = 0.0,
+    close_gaps: Optional[float] = None,
+    merge_epsilon: Optional[float] = None,
     spike_angle: Optional[float] = None,
     max_hole: Optional[int] = None,
-    min_component: int = 400,
-    iterations: int = 5,
+    min_component: Optional[int] = None,
+    iterations: Optional[int] = None,
     self_intersections: bool = True,
+    input_self_intersections: bool = False,
+    resolve_intersections: bool = True,
+    merge_overlapping_shells: bool = True,
     progress: Progress = None,
 ) -> Result:
     """the whole job of `mrepair repair`, keeping the user's model."""
@@ -114,8 +119,8 @@ def remesh(
     edge_length: Optional[float] = None,
     tolerance: Optional[float] = None,
     faces: Optional[int] = None,
-    feature_angle: float = 44.0,
-    iterations: int = 10,
+    feature_angle: Optional[float] = None,
+    iterations: Optional[int] = None,
     min_edge_length: Optional[float] = None,
     max_edge_length: Optional[float] = None,
     protect_features: bool = False,

@@ -207,9 +207,11 @@ unsigned steps_from(const py::object& names)
 // `mrepair clean`: the RameshCleaner pipeline on a manifold mesh.
 py::tuple clean(const py::object& vertices, const py::object& faces, const std::string& profile_name,
                 const py::object& only, const py::object& skip,
-                const std::optional<double>& spike_angle, long long max_hole,
-                long long min_component, long long iterations, double boundary_angle,
-                double density, bool fair, const py::object& progress)
+                const std::optional<double>& spike_angle, const std::optional<long long>& max_hole,
+                const std::optional<long long>& min_component,
+                const std::optional<long long>& iterations,
+                const std::optional<double>& boundary_angle, const std::optional<double>& density,
+                bool fair, const py::object& progress)
 {
   Input_profile profile = Input_profile::scan;
   if (!parse_input_profile(profile_name, profile))
@@ -217,29 +219,28 @@ py::tuple clean(const py::object& vertices, const py::object& faces, const std::
   unsigned mask = profile == Input_profile::cad ? unsigned(clean_steps_cad) : unsigned(clean_step_all);
   if (!only.is_none()) mask = steps_from(only);
   if (!skip.is_none()) mask &= ~steps_from(skip);
-  if (max_hole < 0 || min_component < 0 || iterations < 0)
+  if (max_hole.value_or(0) < 0 || min_component.value_or(0) < 0 || iterations.value_or(0) < 0)
     raise_value_error("max_hole, min_component and iterations must not be negative");
-  const double spike = spike_angle ? *spike_angle : std::numeric_limits<double>::quiet_NaN();
-
   Soup s = soup_from(vertices, faces);
   Report report;
   Mesh mesh;
   build_mesh(s, mesh, report, "run mrepair.repair");
   Python_visitor visitor(progress);
+  // None: absent, the library's default (without max_hole the profile's limit)
   auto run = [&](const auto& steps_np) {
     return clean_scan_mesh(
         mesh, MP::input_profile(
                   profile, MP::max_hole_vertices(
-                               static_cast<std::size_t>(max_hole),
+                               max_hole,
                                MP::min_component_faces(
-                                   static_cast<std::size_t>(min_component),
+                                   min_component,
                                    MP::max_clean_iterations(
-                                       static_cast<std::size_t>(iterations),
+                                       iterations,
                                        MP::boundary_dihedral_angle(
                                            boundary_angle,
                                            MP::hole_density_factor(
                                                density, MP::fair_hole_patches(
-                                                            fair, MP::spike_angle(spike, steps_np))))))))
+                                                            fair, MP::spike_angle(spike_angle, steps_np))))))))
                   .visitor(std::ref(visitor)));
   };
   // with auto and no step list, the profile picks the steps
@@ -258,14 +259,16 @@ py::tuple clean(const py::object& vertices, const py::object& faces, const std::
 // `mrepair remesh`: uniform (edge_length, faces) or curvature-adaptive (tolerance).
 py::tuple remesh(const py::object& vertices, const py::object& faces,
                  const std::optional<double>& edge_length, const std::optional<double>& tolerance,
-                 const std::optional<long long>& target_faces, double feature_angle,
-                 long long iterations, const std::optional<double>& min_edge_length,
+                 const std::optional<long long>& target_faces,
+                 const std::optional<double>& feature_angle, const std::optional<long long>& iterations,
+                 const std::optional<double>& min_edge_length,
                  const std::optional<double>& max_edge_length, bool protect_features,
                  const py::object& progress)
 {
   if (int(bool(edge_length)) + int(bool(tolerance)) + int(bool(target_faces)) != 1)
     raise_value_error("give exactly one of edge_length, tolerance, faces");
-  if (iterations < 0 || iterations > 1000) raise_value_error("iterations must be in [0, 1000]");
+  if (iterations && (*iterations < 0 || *iterations > 1000))
+    raise_value_error("iterations must be in [0, 1000]");
   if (target_faces && *target_faces <= 0) raise_value_error("faces must be positive");
   Soup s = soup_from(vertices, faces);
   Report report;
@@ -273,8 +276,13 @@ py::tuple remesh(const py::object& vertices, const py::object& faces,
   build_mesh(s, mesh, report, "run mrepair.repair or mrepair.soup_to_manifold first");
   Python_visitor visitor(progress);
   using Parallel = CGAL::Parallel_if_available_tag;
-  auto np = MP::remesh_feature_angle(feature_angle > 0 ? feature_angle : -1.)
-                .number_of_iterations(int(iterations))
+  // None: absent, the library's default; a feature angle of 0 turns detection off
+  std::optional<double> angle;
+  if (feature_angle) angle = *feature_angle > 0 ? *feature_angle : -1.;
+  std::optional<int> rounds;
+  if (iterations) rounds = int(*iterations);
+  auto np = MP::remesh_feature_angle(angle)
+                .number_of_iterations(rounds)
                 .protect_constraints(protect_features)
                 .visitor(std::ref(visitor));
   const auto t0 = std::chrono::steady_clock::now();
@@ -353,9 +361,9 @@ possibly in another order). The input must be a valid polygon mesh
                              "the absolute distance limit (the tolerance)");
 
   m.def("clean", &clean, "V"_a, "F"_a, py::kw_only(), "profile"_a = "scan", "only"_a = py::none(),
-        "skip"_a = py::none(), "spike_angle"_a = py::none(), "max_hole"_a = 100,
-        "min_component"_a = 400, "iterations"_a = 5, "boundary_angle"_a = 120.0,
-        "density"_a = 1.0, "fair"_a = false, "progress"_a = py::none(),
+        "skip"_a = py::none(), "spike_angle"_a = py::none(), "max_hole"_a = py::none(),
+        "min_component"_a = py::none(), "iterations"_a = py::none(), "boundary_angle"_a = py::none(),
+        "density"_a = py::none(), "fair"_a = false, "progress"_a = py::none(),
         R"doc(Returns (V, F, report).
 
 The RameshCleaner pipeline on a manifold mesh (`mrepair clean`): spikes,
@@ -378,8 +386,8 @@ progress: None or progress(phase, fraction); returning False cancels
   (mrepair.Cancelled), as Ctrl-C does (KeyboardInterrupt).)doc");
 
   m.def("remesh", &remesh, "V"_a, "F"_a, py::kw_only(), "edge_length"_a = py::none(),
-        "tolerance"_a = py::none(), "faces"_a = py::none(), "feature_angle"_a = 44.0,
-        "iterations"_a = 10, "min_edge_length"_a = py::none(), "max_edge_length"_a = py::none(),
+        "tolerance"_a = py::none(), "faces"_a = py::none(), "feature_angle"_a = py::none(),
+        "iterations"_a = py::none(), "min_edge_length"_a = py::none(), "max_edge_length"_a = py::none(),
         "protect_features"_a = false, "progress"_a = py::none(),
         R"doc(Returns (V, F, report).
 

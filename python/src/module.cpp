@@ -55,14 +55,15 @@ void write(const py::object& path_object, const py::object& vertices, const py::
 
 // `mrepair inspect`: the soup's counts, and the border loops of the mesh
 // view when the polygons form a mesh (the same sections as the command).
-py::object inspect(const py::object& vertices, const py::object& faces, double spike_angle,
-                   long long small_hole, long long small_component,
+py::object inspect(const py::object& vertices, const py::object& faces,
+                   const std::optional<double>& spike_angle, const std::optional<long long>& small_hole,
+                   const std::optional<long long>& small_component,
                    const std::optional<double>& t_junction_tolerance, bool self_intersections,
                    const py::object& progress)
 {
-  if (!(spike_angle >= 0 && spike_angle <= 180))
+  if (spike_angle && !(*spike_angle >= 0 && *spike_angle <= 180))
     raise_value_error("spike_angle expects degrees in [0, 180]");
-  if (small_hole < 0 || small_component < 0)
+  if (small_hole.value_or(0) < 0 || small_component.value_or(0) < 0)
     raise_value_error("small_hole and small_component must not be negative");
   const double tol = t_junction_tolerance ? *t_junction_tolerance : -1.;  // < 0: relative default
   if (t_junction_tolerance && !(tol >= 0 && std::isfinite(tol)))
@@ -70,11 +71,12 @@ py::object inspect(const py::object& vertices, const py::object& faces, double s
   Soup s = soup_from(vertices, faces);
   Python_visitor visitor(progress);
   auto thresholds = [&](bool count_si) {
+    // None: absent, the library's default (parameters.h)
     return MP::spike_angle(
                spike_angle,
                MP::max_hole_vertices(
-                   static_cast<std::size_t>(small_hole),
-                   MP::min_component_faces(static_cast<std::size_t>(small_component),
+                   small_hole,
+                   MP::min_component_faces(small_component,
                                            MP::t_junction_tolerance(
                                                tol, MP::count_self_intersections(count_si)))))
         .visitor(std::ref(visitor));
@@ -138,39 +140,55 @@ py::tuple soup_to_manifold(const py::object& vertices, const py::object& faces, 
 
 // `mrepair repair`: the whole job of repair.h.
 py::tuple repair(const py::object& vertices, const py::object& faces, const std::string& profile,
-                 const std::optional<double>& close_gaps, double merge_epsilon, const std::optional<double>& spike_angle,
-                 const std::optional<long long>& max_hole, long long min_component,
-                 long long iterations, bool self_intersections, bool input_self_intersections,
-                 bool resolve_intersections, bool merge_overlapping_shells, const py::object& progress)
+                 const std::optional<double>& close_gaps, const std::optional<double>& merge_epsilon,
+                 const std::optional<double>& spike_angle, const std::optional<long long>& max_hole,
+                 const std::optional<long long>& min_component,
+                 const std::optional<long long>& iterations, bool self_intersections,
+                 bool input_self_intersections, bool resolve_intersections,
+                 bool merge_overlapping_shells, const py::object& progress)
 {
-  Repair_options options;
-  if (!parse_input_profile(profile, options.profile))
+  Input_profile input_profile = Input_profile::automatic;
+  if (!parse_input_profile(profile, input_profile))
     raise_value_error("profile must be 'auto', 'scan' or 'cad', got '" + profile + "'");
-  const double gap = close_gaps ? *close_gaps : 0.;
-  if (!(gap >= 0) || !(merge_epsilon >= 0) || !std::isfinite(gap) || !std::isfinite(merge_epsilon))
+  const double gap = close_gaps.value_or(0.), merge = merge_epsilon.value_or(0.);
+  if (!(gap >= 0) || !(merge >= 0) || !std::isfinite(gap) || !std::isfinite(merge))
     raise_value_error("close_gaps and merge_epsilon must be finite and >= 0");
-  if ((max_hole && *max_hole < 1) || min_component < 1 || iterations < 0)
+  if (max_hole.value_or(1) < 1 || min_component.value_or(1) < 1 || iterations.value_or(0) < 0)
     raise_value_error("max_hole and min_component must be >= 1, iterations >= 0");
-  options.gap_tolerance = gap;
-  // as `mrepair repair`: None lets a CAD-profile input get the automatic
-  // tolerance, 0 turns gap closing off, T > 0 closes gaps up to T
-  options.automatic_gap_tolerance = !close_gaps;
-  options.merge_epsilon = merge_epsilon;
-  options.spike_angle = spike_angle ? *spike_angle : std::numeric_limits<double>::quiet_NaN();
-  if (max_hole) options.max_hole_vertices = static_cast<std::size_t>(*max_hole);
-  options.min_component_faces = static_cast<std::size_t>(min_component);
-  options.max_clean_iterations = static_cast<std::size_t>(iterations);
-  options.count_self_intersections = self_intersections;
-  options.count_input_self_intersections = input_self_intersections;
-  options.resolve_intersections = resolve_intersections;
-  options.merge_overlapping_shells = merge_overlapping_shells;
-
+  // The options reach the library as given or absent (None): the defaults
+  // are the library's, as for `mrepair repair`. close_gaps None lets a
+  // CAD-profile input get the automatic tolerance, 0 turns gap closing off,
+  // T > 0 closes gaps up to T.
+  const auto np =
+      MP::input_profile(
+          input_profile,
+          MP::gap_tolerance(
+              close_gaps,
+              MP::automatic_gap_tolerance(
+                  !close_gaps,
+                  MP::merge_epsilon(
+                      merge_epsilon,
+                      MP::spike_angle(
+                          spike_angle,
+                          MP::max_hole_vertices(
+                              max_hole,
+                              MP::min_component_faces(
+                                  min_component,
+                                  MP::max_clean_iterations(
+                                      iterations,
+                                      MP::count_self_intersections(
+                                          self_intersections,
+                                          MP::count_input_self_intersections(
+                                              input_self_intersections,
+                                              MP::resolve_intersections(
+                                                  resolve_intersections,
+                                                  MP::merge_overlapping_shells(
+                                                      merge_overlapping_shells))))))))))));
   Soup s = soup_from(vertices, faces);
   Python_visitor visitor(progress);
   Mesh mesh;
   const Repair_result r = without_gil([&] {
-    return repair_polygon_soup(s.points, s.polygons, mesh, options,
-                               CGAL::parameters::visitor(std::ref(visitor)));
+    return repair_polygon_soup(s.points, s.polygons, mesh, np.visitor(std::ref(visitor)));
   });
   visitor.raise_if_stopped();
   if (!r.failed_stage.empty()) raise_value_error(r.message);
@@ -215,8 +233,8 @@ unknown kind, or has faces with out-of-range indices.)doc");
 binary=True writes binary PLY or STL. ASCII OFF, OBJ and PLY and binary PLY
 keep every coordinate exactly. Raises OSError or ValueError.)doc");
 
-  m.def("inspect", &mp::inspect, "V"_a, "F"_a, py::kw_only(), "spike_angle"_a = 100.0,
-        "small_hole"_a = 100, "small_component"_a = 400, "t_junction_tolerance"_a = py::none(),
+  m.def("inspect", &mp::inspect, "V"_a, "F"_a, py::kw_only(), "spike_angle"_a = py::none(),
+        "small_hole"_a = py::none(), "small_component"_a = py::none(), "t_junction_tolerance"_a = py::none(),
         "self_intersections"_a = true, "progress"_a = py::none(),
         R"doc(Returns the report, a dict.
 
@@ -251,8 +269,8 @@ progress: None or progress(phase, fraction); returning False cancels
   (mrepair.Cancelled), as Ctrl-C does (KeyboardInterrupt).)doc");
 
   m.def("repair", &mp::repair, "V"_a, "F"_a, py::kw_only(), "profile"_a = "auto",
-        "close_gaps"_a = py::none(), "merge_epsilon"_a = 0.0, "spike_angle"_a = py::none(),
-        "max_hole"_a = py::none(), "min_component"_a = 400, "iterations"_a = 5,
+        "close_gaps"_a = py::none(), "merge_epsilon"_a = py::none(), "spike_angle"_a = py::none(),
+        "max_hole"_a = py::none(), "min_component"_a = py::none(), "iterations"_a = py::none(),
         "self_intersections"_a = true, "input_self_intersections"_a = false,
         "resolve_intersections"_a = true, "merge_overlapping_shells"_a = true,
         "progress"_a = py::none(),

@@ -14,12 +14,16 @@
 //
 // Statistics are optional: without them the operations are plain edits with
 // the same checks and counts (ensure_valid_mesh, a step called on its own).
+// The patch edits (take back, put back, replace a patch's faces) are reachable
+// only through the `Patch_operations` that `insert_patch` and `edit_patch`
+// hand their callback, where the statistics are updated for the whole patch.
 #ifndef MREPAIR_INTERNAL_LOCAL_OPERATIONS_H
 #define MREPAIR_INTERNAL_LOCAL_OPERATIONS_H
 
 #include <mrepair/geometric_statistics.h>
 #include <mrepair/internal/utility.h>
 
+#include <CGAL/Polygon_mesh_processing/manifoldness.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -121,6 +125,9 @@ bool triangulate_hole_checked(PM& pm, typename boost::graph_traits<PM>::halfedge
 }
 
 template <typename PM, typename VPM>
+class Patch_operations;
+
+template <typename PM, typename VPM>
 class Local_operations
 {
 public:
@@ -143,7 +150,8 @@ public:
   void keep_current(Statistics* s) { stats_ = s; }
   Statistics* statistics() const { return stats_; }
 
-  Local_operation_counts counts;
+  /// what the operations did so far (this object's edits only)
+  const Local_operation_counts& counts() const { return counts_; }
 
   // ---- queries: the one copy of each validity test ---------------------------
 
@@ -190,23 +198,13 @@ public:
 
   // ---- edits --------------------------------------------------------------------
 
-  /// moves `v` to `p`.
-  void move_vertex(vertex_descriptor v, const Vec3& p)
-  {
-    const std::array<vertex_descriptor, 1> one{{v}};
-    if (stats_) stats_->before_local_edit(one);
-    set_point(vpm_, v, p);
-    if (stats_) stats_->after_local_edit(one);
-    ++counts.vertices_moved;
-  }
-
   /// moves `vs[i]` to `ps[i]` for every i, with one statistics update.
   void move_vertices(const std::vector<vertex_descriptor>& vs, const std::vector<Vec3>& ps)
   {
     if (stats_) stats_->before_local_edit(vs);
     for (std::size_t i = 0; i < vs.size(); ++i) set_point(vpm_, vs[i], ps[i]);
     if (stats_) stats_->after_local_edit(vs);
-    counts.vertices_moved += vs.size();
+    counts_.vertices_moved += vs.size();
   }
 
   /// moves each vertex of `vs` in turn to `position_of(v)`, which may read the
@@ -217,7 +215,7 @@ public:
     if (stats_) stats_->before_local_edit(vs);
     for (vertex_descriptor v : vs) set_point(vpm_, v, position_of(v));
     if (stats_) stats_->after_local_edit(vs);
-    counts.vertices_moved += vs.size();
+    counts_.vertices_moved += vs.size();
   }
 
   /// collapses the edge of `h` (callers test `collapse_keeps_manifold` or the
@@ -231,9 +229,9 @@ public:
     const vertex_descriptor v = CGAL::Euler::collapse_edge(e, pm_);
     put(vpm_, v, p);
     if (stats_) stats_->after_edge_collapse(v);
-    ++counts.edges_collapsed;
-    ++counts.vertices_removed;
-    counts.faces_removed += faces_gone;
+    ++counts_.edges_collapsed;
+    ++counts_.vertices_removed;
+    counts_.faces_removed += faces_gone;
     check_around(v);
     return v;
   }
@@ -249,38 +247,9 @@ public:
     if (stats_) stats_->before_edge_flip(e);
     CGAL::Euler::flip_edge(h, pm_);
     if (stats_) stats_->after_edge_flip(e);
-    ++counts.edges_flipped;
+    ++counts_.edges_flipped;
     check_around(source(h, pm_));
     check_around(target(h, pm_));
-  }
-
-  /// splits the edge of `h` at `p` and cuts each triangle beside it from the
-  /// new vertex to its opposite corner; returns the new vertex. `new_faces`,
-  /// when given, receives the faces on both sides of the new edges.
-  vertex_descriptor split_edge(halfedge_descriptor h, const Vec3& p,
-                               std::vector<face_descriptor>* new_faces = nullptr)
-  {
-    const edge_descriptor e = edge(h, pm_);
-    if (stats_) stats_->before_edge_split(e);
-    const halfedge_descriptor hn = CGAL::Euler::split_edge(h, pm_);  // hn -> new vertex
-    const vertex_descriptor vn = target(hn, pm_);
-    set_point(vpm_, vn, p);
-    ++counts.vertices_added;
-    ++counts.edges_split;
-    const halfedge_descriptor oh = opposite(h, pm_), ohn = opposite(hn, pm_);
-    if (!is_border(hn, pm_)) {
-      const halfedge_descriptor a = CGAL::Euler::split_face(hn, next(h, pm_), pm_);
-      ++counts.faces_added;
-      if (new_faces) new_faces->insert(new_faces->end(), {face(a, pm_), face(opposite(a, pm_), pm_)});
-    }
-    if (!is_border(oh, pm_)) {
-      const halfedge_descriptor b = CGAL::Euler::split_face(oh, next(ohn, pm_), pm_);
-      ++counts.faces_added;
-      if (new_faces) new_faces->insert(new_faces->end(), {face(b, pm_), face(opposite(b, pm_), pm_)});
-    }
-    if (stats_) stats_->after_edge_split(vn);
-    check_around(vn);
-    return vn;
   }
 
   /// removes one face whose removal pinches no vertex (the caller checked:
@@ -297,8 +266,8 @@ public:
     for (std::size_t i = 0; i < n; ++i)
       if (has_other_face(vs[i], f)) survivors[kept++] = vs[i];
     CGAL::Euler::remove_face(halfedge(f, pm_), pm_);
-    ++counts.faces_removed;
-    counts.vertices_removed += n - kept;
+    ++counts_.faces_removed;
+    counts_.vertices_removed += n - kept;
     if (stats_) stats_->after_local_edit(std::vector<vertex_descriptor>(survivors.begin(), survivors.begin() + kept));
     for (std::size_t i = 0; i < kept; ++i) check_around(survivors[i]);
   }
@@ -358,7 +327,7 @@ public:
       }
       if (run_size.size() <= 1) continue;
       // a pinch: keep the largest fan, remove the others
-      ++counts.pinches_resolved;
+      ++counts_.pinches_resolved;
       const std::size_t best = std::size_t(std::max_element(run_size.begin(), run_size.end()) - run_size.begin());
       // (a face met twice in one ring is marked and removed once)
       for (std::size_t i = 0; i < n; ++i)
@@ -390,20 +359,94 @@ public:
     for (face_descriptor f : to_remove) put(fmark_, f, char(0));
     for (face_descriptor f : to_remove) CGAL::Euler::remove_face(halfedge(f, pm_), pm_);
     if (stats_) stats_->after_local_edit(kept_vertices);
-    counts.faces_removed += to_remove.size();
-    counts.pinch_faces_removed += to_remove.size() - asked;
-    counts.vertices_removed += touched.size() - kept_vertices.size();
+    counts_.faces_removed += to_remove.size();
+    counts_.pinch_faces_removed += to_remove.size() - asked;
+    counts_.vertices_removed += touched.size() - kept_vertices.size();
     for (vertex_descriptor v : kept_vertices) check_around(v);
     if (survivors) survivors->insert(survivors->end(), kept_vertices.begin(), kept_vertices.end());
     return to_remove.size();
   }
+
+  /// removes whole connected components given by all their faces: nothing
+  /// around them survives, so no pinch can arise.
+  std::size_t remove_components(const std::vector<face_descriptor>& component_faces)
+  {
+    std::vector<vertex_descriptor> touched;
+    if (stats_) {
+      for (face_descriptor f : component_faces)
+        for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_)) touched.push_back(v);
+      std::sort(touched.begin(), touched.end());
+      touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+      stats_->before_local_edit(touched);
+    }
+    const std::size_t nv = internal::vertex_count(pm_);
+    for (face_descriptor f : component_faces) CGAL::Euler::remove_face(halfedge(f, pm_), pm_);
+    counts_.faces_removed += component_faces.size();
+    counts_.vertices_removed += nv - internal::vertex_count(pm_);
+    if (stats_) stats_->after_local_edit(std::vector<vertex_descriptor>());
+    return component_faces.size();
+  }
+
+  /// removes a vertex without faces.
+  void remove_isolated_vertex(vertex_descriptor v)
+  {
+    remove_vertex(v, pm_);
+    ++counts_.vertices_removed;
+  }
+
+  /// splits every non-manifold vertex (two or more fans meeting at one
+  /// point) into one vertex per fan at the same position, so that the mesh
+  /// is a manifold again; returns the number of vertices added. Nothing
+  /// moves; the statistics, when attached, do not see the new vertices (the
+  /// callers split last, after every step that reads them).
+  std::size_t split_non_manifold_vertices()
+  {
+    const std::size_t added = CGAL::Polygon_mesh_processing::duplicate_non_manifold_vertices(
+        pm_, CGAL::parameters::vertex_point_map(vpm_));
+    counts_.vertices_added += added;
+    return added;
+  }
+
+  /// inserts a patch into the border loop of `h`: `build(patch_operations)`
+  /// triangulates the loop and may refine, relax and fair the new faces,
+  /// editing through the `Local_operations` it is given (no statistics: they
+  /// are updated once for the whole patch here). `build` returns the new
+  /// faces' vertices that are not on the loop, and leaves the mesh unchanged
+  /// when it returns false. Returns what `build` returned.
+  template <typename Build>
+  bool insert_patch(halfedge_descriptor h, Build&& build)
+  {
+    std::vector<vertex_descriptor> loop;
+    for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_)) loop.push_back(target(g, pm_));
+    const bool done = patch_edit(loop, build);
+    if (done) ++counts_.patches_inserted;
+    return done;
+  }
+
+  /// edits a patch that `insert_patch` put into the loop `loop` (its
+  /// vertices) and that has no vertex of its own yet (Liepa's patch), through
+  /// the `Local_operations` given to `edit`, with the statistics updated once
+  /// as `insert_patch` does. `edit(patch_ops, loop, added)` returns false when
+  /// it took the patch back (the loop is a border again), true otherwise.
+  template <typename Edit>
+  bool edit_patch(std::vector<vertex_descriptor> loop, Edit&& edit)
+  {
+    const bool kept = patch_edit(loop, edit, true);
+    if (!kept && counts_.patches_inserted > 0) --counts_.patches_inserted;
+    return kept;
+  }
+
+protected:
+  // ---- patch edits: only inside `insert_patch` / `edit_patch`, through the
+  // `Patch_operations` they hand to their callback. They update no statistics
+  // themselves: `patch_edit` updates them once for the whole patch.
 
   /// takes back the faces of a patch this object inserted into one border
   /// loop (the whole patch, nothing else): the loop is a border again.
   void remove_patch(const std::vector<face_descriptor>& patch)
   {
     for (face_descriptor f : patch) CGAL::Euler::remove_face(halfedge(f, pm_), pm_);
-    counts.faces_removed += patch.size();
+    counts_.faces_removed += patch.size();
   }
 
   /// adds `triangles` into the border loop they fill (the faces of a patch
@@ -428,7 +471,7 @@ public:
         if ((anywhere || next_to_border(t)) && CGAL::Euler::can_add_face(t, pm_))
           f = CGAL::Euler::add_face(t, pm_);
         if (f == GT::null_face()) later.push_back(t);
-        else { added.push_back(f); ++counts.faces_added; }
+        else { added.push_back(f); ++counts_.faces_added; }
       }
       if (later.size() == todo.size()) {
         if (anywhere) return false;
@@ -509,64 +552,8 @@ public:
       insert_triangles(old_triangles, patch);
       return false;
     }
-    counts.vertices_added += created.size();
+    counts_.vertices_added += created.size();
     return true;
-  }
-
-  /// removes whole connected components given by all their faces: nothing
-  /// around them survives, so no pinch can arise.
-  std::size_t remove_components(const std::vector<face_descriptor>& component_faces)
-  {
-    std::vector<vertex_descriptor> touched;
-    if (stats_) {
-      for (face_descriptor f : component_faces)
-        for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_)) touched.push_back(v);
-      std::sort(touched.begin(), touched.end());
-      touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-      stats_->before_local_edit(touched);
-    }
-    const std::size_t nv = internal::vertex_count(pm_);
-    for (face_descriptor f : component_faces) CGAL::Euler::remove_face(halfedge(f, pm_), pm_);
-    counts.faces_removed += component_faces.size();
-    counts.vertices_removed += nv - internal::vertex_count(pm_);
-    if (stats_) stats_->after_local_edit(std::vector<vertex_descriptor>());
-    return component_faces.size();
-  }
-
-  /// removes a vertex without faces.
-  void remove_isolated_vertex(vertex_descriptor v)
-  {
-    remove_vertex(v, pm_);
-    ++counts.vertices_removed;
-  }
-
-  /// inserts a patch into the border loop of `h`: `build(patch_operations)`
-  /// triangulates the loop and may refine, relax and fair the new faces,
-  /// editing through the `Local_operations` it is given (no statistics: they
-  /// are updated once for the whole patch here). `build` returns the new
-  /// faces' vertices that are not on the loop, and leaves the mesh unchanged
-  /// when it returns false. Returns what `build` returned.
-  template <typename Build>
-  bool insert_patch(halfedge_descriptor h, Build&& build)
-  {
-    std::vector<vertex_descriptor> loop;
-    for (halfedge_descriptor g : CGAL::halfedges_around_face(h, pm_)) loop.push_back(target(g, pm_));
-    const bool done = patch_edit(loop, build);
-    if (done) ++counts.patches_inserted;
-    return done;
-  }
-
-  /// edits a patch that `insert_patch` put into the loop `loop` (its
-  /// vertices) and that has no vertex of its own yet (Liepa's patch), through
-  /// the `Local_operations` given to `edit`, with the statistics updated once
-  /// as `insert_patch` does. `edit(patch_ops, loop, added)` returns false when
-  /// it took the patch back (the loop is a border again), true otherwise.
-  template <typename Edit>
-  bool edit_patch(std::vector<vertex_descriptor> loop, Edit&& edit)
-  {
-    const bool kept = patch_edit(loop, edit, true);
-    if (!kept && counts.patches_inserted > 0) --counts.patches_inserted;
-    return kept;
   }
 
 private:
@@ -579,19 +566,19 @@ private:
   bool patch_edit(std::vector<vertex_descriptor>& loop, Build& build, bool inserted_here = false)
   {
     if (stats_) stats_->before_local_edit(loop);
-    Local_operations patch_ops(pm_, vpm_);
+    Patch_operations<PM, VPM> patch_ops(pm_, vpm_);
     std::vector<vertex_descriptor> added;
     const std::size_t faces_before = internal::face_count(pm_);
     const std::size_t vertices_before = internal::vertex_count(pm_);
     const bool done = build(patch_ops, loop, added);
     const std::size_t faces_after = internal::face_count(pm_);
     const std::size_t vertices_after = internal::vertex_count(pm_);
-    if (faces_after >= faces_before) counts.faces_added += faces_after - faces_before;
-    else if (inserted_here) counts.faces_added -= std::min(counts.faces_added, faces_before - faces_after);
-    else counts.faces_removed += faces_before - faces_after;
-    if (vertices_after >= vertices_before) counts.vertices_added += vertices_after - vertices_before;
-    else counts.vertices_removed += vertices_before - vertices_after;
-    counts.vertices_moved += patch_ops.counts.vertices_moved;
+    if (faces_after >= faces_before) counts_.faces_added += faces_after - faces_before;
+    else if (inserted_here) counts_.faces_added -= std::min(counts_.faces_added, faces_before - faces_after);
+    else counts_.faces_removed += faces_before - faces_after;
+    if (vertices_after >= vertices_before) counts_.vertices_added += vertices_after - vertices_before;
+    else counts_.vertices_removed += vertices_before - vertices_after;
+    counts_.vertices_moved += patch_ops.counts().vertices_moved;
     // `loop` may have been updated by `build` (a collapse that kept a new vertex)
     std::vector<vertex_descriptor> after = loop;
     after.insert(after.end(), added.begin(), added.end());
@@ -642,8 +629,27 @@ private:
   PM& pm_;
   VPM vpm_;
   Statistics* stats_ = nullptr;
+  Local_operation_counts counts_;
   Face_mark fmark_;
   bool has_marks_ = false;
+};
+
+// What the callback of `insert_patch` and `edit_patch` edits the patch
+// with: every operation, and those that take back, put back or replace the
+// patch's faces (made only by `patch_edit`, so that those are reachable
+// nowhere else).
+template <typename PM, typename VPM>
+class Patch_operations : public Local_operations<PM, VPM>
+{
+  using Base = Local_operations<PM, VPM>;
+  friend class Local_operations<PM, VPM>;
+  Patch_operations(PM& pm, VPM vpm) : Base(pm, vpm) {}
+
+public:
+  using Base::insert_triangles;
+  using Base::remove_patch;
+  using Base::replace_patch;
+  using Base::triangles_of;
 };
 
 }  // namespace internal

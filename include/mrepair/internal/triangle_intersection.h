@@ -98,7 +98,7 @@ inline bool apart_disjoint(const Epick_point f[3], const Epick_point g[3])
   };
   auto either_way = [&](const Vec3& m) { return separates(m) || separates(neg(m)); };
   const Vec3 nf = cross(fp[1], fp[2]);
-  const Vec3 ng = cross(sub(gp[1], gp[0]), sub(gp[2], gp[0]));
+  const Vec3 ng = triangle_normal(gp[0], gp[1], gp[2]);
   const Vec3 cf = add(add(fp[0], fp[1]), fp[2]), cg = add(add(gp[0], gp[1]), gp[2]);
   return either_way(sub(cg, cf)) || either_way(nf) || either_way(ng);
 }

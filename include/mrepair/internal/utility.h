@@ -54,6 +54,13 @@ inline Vec3 cross(const Vec3& a, const Vec3& b)
 {
   return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
 }
+/// the normal of triangle (a, b, c), not normalised (twice its area): the one
+/// formula every user shares, with `a` as the corner the two edges leave
+/// from (the rounding depends on which corner that is)
+inline Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c)
+{
+  return cross(sub(b, a), sub(c, a));
+}
 inline double squared_norm(const Vec3& a) { return dot(a, a); }
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 inline double distance(const Vec3& a, const Vec3& b) { return norm(sub(a, b)); }

@@ -6,6 +6,7 @@
 
 #include <mrepair/cleaning_results.h>
 #include <mrepair/definitions.h>
+#include <mrepair/parameters.h>
 #include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
 #include <mrepair/internal/clean_scan_mesh/safety.h>
 #include <mrepair/internal/clean_scan_mesh/small_components.h>
@@ -206,14 +207,33 @@ void count_region_faces(PM& pm, const std::vector<typename boost::graph_traits<P
 struct Boundary_settings
 {
   double max_angle = defaults::boundary_dihedral_angle;  // degrees
-  std::size_t rings = 4;
-  std::size_t max_rounds = 30;
-  std::size_t component_faces = 40;
+  std::size_t rings = defaults::confidence_rings;
+  std::size_t max_rounds = defaults::max_boundary_rounds;
+  std::size_t component_faces = defaults::boundary_component_faces;
   std::size_t smoothing_iterations = defaults::boundary_smoothing_iterations;
-  double smoothing_step = 0.02;
-  double jagged_loop_turning = 1.;
-  double erosion_share = 0.5;
+  double smoothing_step = defaults::boundary_smoothing_step;
+  double jagged_loop_turning = defaults::jagged_loop_turning;
+  double erosion_share = defaults::boundary_erosion_share;
 };
+
+// Reads the settings of `clean_boundaries()` from `np` (the public call's or
+// the pipeline's, which forwards its own); false when one is out of range.
+template <typename NamedParameters>
+bool read_boundary_settings(const NamedParameters& np, Boundary_settings& s)
+{
+  s.max_angle = get_or(np, internal_np::boundary_dihedral_angle, s.max_angle);
+  s.rings = get_or(np, internal_np::confidence_rings, s.rings);
+  s.max_rounds = get_or(np, internal_np::max_boundary_rounds, s.max_rounds);
+  s.component_faces = get_or(np, internal_np::boundary_component_faces, s.component_faces);
+  s.smoothing_iterations =
+      get_or(np, internal_np::boundary_smoothing_iterations, s.smoothing_iterations);
+  s.smoothing_step = get_or(np, internal_np::boundary_smoothing_step, s.smoothing_step);
+  s.jagged_loop_turning = get_or(np, internal_np::jagged_loop_turning, s.jagged_loop_turning);
+  s.erosion_share = get_or(np, internal_np::boundary_erosion_share, s.erosion_share);
+  return s.max_angle >= 0. && s.max_angle <= 180. && s.smoothing_step >= 0. &&
+         s.smoothing_step <= 1. && s.erosion_share >= 0. && s.erosion_share <= 1. &&
+         s.jagged_loop_turning >= 0.;
+}
 
 /// the worker of `clean_boundaries()`: every edit goes through `ops`.
 template <typename PM, typename VPM, typename Visitor>
@@ -376,9 +396,9 @@ Boundary_cleaning_result clean_boundaries_with(Local_operations<PM, VPM>& ops,
     if (accepted == 0) break;
     ++r.rounds;
     survivors.clear();
-    const std::size_t pinch_before = ops.counts.pinch_faces_removed;
+    const std::size_t pinch_before = ops.counts().pinch_faces_removed;
     r.faces_removed += ops.remove_faces_without_pinches(doomed, &survivors);
-    r.pinch_faces_removed += ops.counts.pinch_faces_removed - pinch_before;
+    r.pinch_faces_removed += ops.counts().pinch_faces_removed - pinch_before;
     r.bad_vertices_removed += accepted;
     candidates.swap(survivors);
     vis.progress(double(r.rounds) / double(s.max_rounds + 1));

@@ -6,11 +6,15 @@
 #define MREPAIR_INTERNAL_CLEAN_SCAN_MESH_HOLE_FILLER_H
 
 #include <mrepair/cleaning_results.h>
+#include <mrepair/definitions.h>
+#include <mrepair/internal/adaptive_remesh/driver.h>
+#include <mrepair/internal/clean_scan_mesh/common.h>
 #include <mrepair/internal/clean_scan_mesh/mesh_ops.h>
 #include <mrepair/internal/clean_scan_mesh/safety.h>
+#include <mrepair/internal/coordinate_range.h>
 #include <mrepair/internal/local_operations.h>
 #include <mrepair/internal/patch_guard.h>
-#include <mrepair/internal/remesh/driver.h>
+#include <mrepair/parameters.h>
 #include <mrepair/status.h>
 #include <mrepair/visitors.h>
 
@@ -25,6 +29,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <iterator>
 #include <map>
@@ -36,6 +41,39 @@ namespace mrepair {
 namespace internal {
 namespace clean_pipeline {
 
+/// The settings of the hole filling.
+struct Hole_filling_settings
+{
+  std::size_t max_vertices = defaults::max_hole_vertices;  // loops with fewer vertices are filled
+  double density = defaults::hole_density_factor;           // patch edge length / border mean
+  bool refine = true;                                       // remesh the patch (3.5)
+  bool fair = false;                                        // ... and fair it
+  std::size_t enlargements = defaults::max_hole_enlargements;  // of an aborted fill
+  std::size_t delaunay_above = defaults::hole_delaunay_above;  // 3D Delaunay search space above
+  double area_share = defaults::max_hole_area_share;  // a larger cap makes the loop a sheet's border
+};
+
+// Reads the settings of `fill_small_holes()` from `np` (the public call's or
+// the pipeline's, which forwards its own). `cad`: the defaults of the cad
+// profile: loops up to 500 vertices (long loops around flat cuts), Liepa's
+// patch alone (no refinement to a density the part does not have, so no
+// fairing) and no enlargement (it removes the user's faces). False when a
+// setting is out of range.
+template <typename NamedParameters>
+bool read_hole_filling_settings(const NamedParameters& np, bool cad, Hole_filling_settings& s)
+{
+  s.max_vertices = get_or(np, internal_np::max_hole_vertices,
+                          cad ? defaults::max_cad_hole_vertices : defaults::max_hole_vertices);
+  s.density = get_or(np, internal_np::hole_density_factor, s.density);
+  s.refine = get_or(np, internal_np::refine_hole_patches, !cad);
+  s.fair = get_or(np, internal_np::fair_hole_patches, false) && !cad;
+  s.enlargements = get_or(np, internal_np::max_hole_enlargements,
+                          cad ? std::size_t(0) : defaults::max_hole_enlargements);
+  s.delaunay_above = get_or(np, internal_np::hole_delaunay_above, s.delaunay_above);
+  s.area_share = get_or(np, internal_np::max_hole_area_share, s.area_share);
+  return s.max_vertices > 0 && s.density > 0. && std::isfinite(s.density) && s.area_share >= 0.;
+}
+
 /// Fills holes (3.4) and handles aborted fills (3.5) for one mesh.
 template <typename PM, typename VPM>
 class Small_hole_filler
@@ -46,6 +84,7 @@ class Small_hole_filler
   using face_descriptor = typename GT::face_descriptor;
 
   using Operations = Local_operations<PM, VPM>;
+  using Patch_ops = Patch_operations<PM, VPM>;  // what a patch edit is given
 
   Operations& ops_;
   PM& pm_;
@@ -53,6 +92,7 @@ class Small_hole_filler
   std::size_t max_vertices_;
   double density_;
   bool refine_, fair_;
+  std::size_t enlargements_;
   std::size_t delaunay_above_;
   double area_share_;
   // scratch of the bounded component searches, all zero between searches
@@ -79,11 +119,10 @@ public:
 
   Hole_filling_result result;
 
-  Small_hole_filler(Operations& ops, std::size_t max_vertices, double density, bool refine,
-                    bool fair, std::size_t delaunay_above, double area_share)
-    : ops_(ops), pm_(ops.mesh()), vpm_(ops.vertex_point_map()), max_vertices_(max_vertices),
-      density_(density), refine_(refine), fair_(fair), delaunay_above_(delaunay_above),
-      area_share_(area_share), visited_(get(CGAL::dynamic_face_property_t<char>(), pm_)),
+  Small_hole_filler(Operations& ops, const Hole_filling_settings& s)
+    : ops_(ops), pm_(ops.mesh()), vpm_(ops.vertex_point_map()), max_vertices_(s.max_vertices),
+      density_(s.density), refine_(s.refine), fair_(s.fair), enlargements_(s.enlargements),
+      delaunay_above_(s.delaunay_above), area_share_(s.area_share), visited_(get(CGAL::dynamic_face_property_t<char>(), pm_)),
       guard_(pm_, vpm_)
   {
     for (face_descriptor f : faces(pm_)) put(visited_, f, char(0));
@@ -192,7 +231,7 @@ public:
   // After the refinement: fairing, then the crossing test. A refined or
   // faired patch that crosses the surface gives way to Liepa's patch
   // (`coarse`), kept when it crosses nothing; false when the loop stays open.
-  bool finish_fill(Operations& patch_ops, std::vector<face_descriptor>& patch,
+  bool finish_fill(Patch_ops& patch_ops, std::vector<face_descriptor>& patch,
                    const std::vector<std::array<vertex_descriptor, 3>>& coarse,
                    std::vector<vertex_descriptor>& added, std::size_t index)
   {
@@ -249,7 +288,7 @@ public:
       double mean = 0.;
       if (!loop_mean_length(b.h, b.n, mean)) continue;
       b.length = density_ * mean;
-      b.inserted = ops_.insert_patch(b.h, [&](Operations& patch_ops, std::vector<vertex_descriptor>& loop,
+      b.inserted = ops_.insert_patch(b.h, [&](Patch_ops& patch_ops, std::vector<vertex_descriptor>& loop,
                                               std::vector<vertex_descriptor>&) {
         if (!triangulate(b.h, b.n, b.patch)) return false;
         b.loop = loop;
@@ -266,7 +305,7 @@ public:
       last_fill_intersected_ = false;
       bool filled = false;
       if (b.inserted)
-        filled = ops_.edit_patch(b.loop, [&](Operations& patch_ops, std::vector<vertex_descriptor>&,
+        filled = ops_.edit_patch(b.loop, [&](Patch_ops& patch_ops, std::vector<vertex_descriptor>&,
                                              std::vector<vertex_descriptor>& added) {
           put_refined(patch_ops, b.patch, b.refined, added);
           return finish_fill(patch_ops, b.patch, b.coarse, added, b.index);
@@ -353,7 +392,7 @@ public:
 
   // Puts a remeshed patch in place of Liepa's; when it cannot go back (a new
   // inner edge would join two loop vertices joined elsewhere), Liepa's stays.
-  void put_refined(Operations& patch_ops, std::vector<face_descriptor>& patch, const Refined_patch& r,
+  void put_refined(Patch_ops& patch_ops, std::vector<face_descriptor>& patch, const Refined_patch& r,
                    std::vector<vertex_descriptor>& added)
   {
     if (!r.ok) return;
@@ -397,13 +436,14 @@ public:
     if (last_fill_intersected_) intersected_.insert(h);
   }
 
+  // Fills every small hole of the mesh, with the settings' enlargements.
   template <typename Visitor>
-  Status run(std::size_t max_enlargements, Visitor& visitor)
+  Status run(Visitor& visitor)
   {
     std::vector<halfedge_descriptor> all, loops;
     border_halfedges(pm_, all);
     loops_of(all, loops);
-    return run_on(std::move(loops), max_enlargements, visitor);
+    return run_on(std::move(loops), enlargements_, visitor);
   }
 
   // The same on the given loops only, one border halfedge each (the holes an
@@ -487,6 +527,39 @@ public:
     return result.open_holes.empty() ? Status::ok : Status::partial;
   }
 };
+
+// fill_small_holes() on the whole mesh, with the settings of `np` and the
+// defaults of the cad profile when `cad` (read_hole_filling_settings): the
+// public call (`cad` false) and the holes the solid repair leaves (repair.h).
+template <typename PolygonMesh, typename NamedParameters, typename Visitor>
+Hole_filling_result fill_small_holes_with(PolygonMesh& pmesh, const NamedParameters& np, bool cad,
+                                          Visitor& visitor)
+{
+  Hole_filling_result r;
+  Hole_filling_settings settings;
+  if (!read_hole_filling_settings(np, cad, settings)) {
+    r.status = Status::invalid_parameter;
+    return r;
+  }
+  auto vpm = CGAL::parameters::choose_parameter(
+      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+      get_property_map(CGAL::vertex_point, pmesh));
+  std::string unused;  // the result has no message
+  r.status = check_step_input(pmesh, vpm, true, unused);
+  if (r.status != Status::ok) return r;
+  Local_operations<PolygonMesh, decltype(vpm)> ops(pmesh, vpm);
+  Small_hole_filler<PolygonMesh, decltype(vpm)> filler(ops, settings);
+  filler.result.status = filler.run(visitor);
+  return filler.result;
+}
+
+// The same with the profile's defaults and no visitor of the caller's.
+template <typename PolygonMesh, typename NamedParameters>
+Hole_filling_result fill_small_holes_of_profile(PolygonMesh& pmesh, const NamedParameters& np, bool cad)
+{
+  Default_visitor quiet;
+  return fill_small_holes_with(pmesh, np, cad, quiet);
+}
 
 }  // namespace clean_pipeline
 }  // namespace internal

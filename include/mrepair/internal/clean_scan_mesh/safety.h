@@ -256,7 +256,7 @@ double loop_cap_area(typename boost::graph_traits<PM>::halfedge_descriptor h, co
   double area = 0.;
   for (auto g : CGAL::halfedges_around_face(h, pm)) {
     const Vec3 a = point(vpm, source(g, pm)), b = point(vpm, target(g, pm));
-    area += 0.5 * norm(cross(sub(a, c), sub(b, c)));
+    area += 0.5 * norm(triangle_normal(c, a, b));
   }
   return area;
 }

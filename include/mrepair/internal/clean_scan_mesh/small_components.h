@@ -139,10 +139,10 @@ Small_components_result remove_small_components_seeded(Local_operations<PM, VPM>
     }
     // Components are vertex-disjoint in a valid mesh: removing one whole never
     // pinches another.
-    const std::size_t vertices_gone = ops.counts.vertices_removed;
+    const std::size_t vertices_gone = ops.counts().vertices_removed;
     ops.remove_components(std::vector<face_descriptor>(small.begin() + offsets[c],
                                                        small.begin() + offsets[c + 1]));
-    r.vertices_removed += ops.counts.vertices_removed - vertices_gone;
+    r.vertices_removed += ops.counts().vertices_removed - vertices_gone;
     ++r.components_removed;
     r.faces_removed += nf;
   }

@@ -1,6 +1,6 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
 // Adaptor from the pipeline (clean_scan_mesh.h) to the workers of the
-// scan-cleaning-I steps (internal/scan_clean/: spikes, near-degenerate faces),
+// scan-cleaning-I steps (internal/clean_scan_mesh/: spikes, near-degenerate faces),
 // called on the pipeline's own local operations without the public faces'
 // input checks: each call returns a uniform outcome (status, number of
 // changes, report). The geometric
@@ -11,10 +11,10 @@
 #define MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SPIKE_STEPS_H
 
 #include <mrepair/geometric_statistics.h>
+#include <mrepair/internal/clean_scan_mesh/near_degenerate_faces.h>
+#include <mrepair/internal/clean_scan_mesh/spikes.h>
 #include <mrepair/internal/local_operations.h>
 #include <mrepair/parameters.h>
-#include <mrepair/relax_spikes.h>
-#include <mrepair/repair_near_degenerate_faces.h>
 #include <mrepair/report.h>
 #include <mrepair/status.h>
 
@@ -36,17 +36,21 @@ struct Step_outcome
   Report report;
 };
 
-template <typename PM, typename VPM>
+// `NP`: the pipeline's named parameters, forwarded: the steps read their
+// settings from them as the public calls do (relax_spikes.h,
+// repair_near_degenerate_faces.h).
+template <typename PM, typename VPM, typename NP>
 class Spike_steps
 {
   using Stats = Geometric_statistics<PM, VPM>;
   Local_operations<PM, VPM>& ops_;
   PM& pm_;
-  scan_clean::Spike_settings spike_settings_;
+  const NP& np_;
+  Spike_settings spike_settings_;
   std::unique_ptr<Stats> stats_;
   // the spiked vertices, found again from the statistics' journal (declared
   // after stats_: goes first, and detaches the journal)
-  std::unique_ptr<scan_clean::Spike_tracker<PM, VPM>> tracker_;
+  std::unique_ptr<Spike_tracker<PM, VPM>> tracker_;
 
   Stats& stats()
   {
@@ -54,21 +58,24 @@ class Spike_steps
       stats_.reset(new Stats(pm_, ops_.vertex_point_map()));
       stats_->compute_all();
       ops_.keep_current(stats_.get());
-      tracker_.reset(new scan_clean::Spike_tracker<PM, VPM>(*stats_));
+      tracker_.reset(new Spike_tracker<PM, VPM>(*stats_));
     }
     return *stats_;
   }
 
 public:
-  // `spike_angle`: degrees, NaN for the default of relax_spikes.h; the
-  // pipeline has checked it, so the settings read without error.
-  Spike_steps(Local_operations<PM, VPM>& ops, double spike_angle) : ops_(ops), pm_(ops.mesh())
+  // The pipeline has checked the settings (`settings_are_valid`).
+  Spike_steps(Local_operations<PM, VPM>& ops, const NP& np) : ops_(ops), pm_(ops.mesh()), np_(np)
   {
     std::string unused;
-    if (std::isnan(spike_angle))
-      scan_clean::read_spike_settings(parameters::default_values(), spike_settings_, unused);
-    else
-      scan_clean::read_spike_settings(parameters::spike_angle(spike_angle), spike_settings_, unused);
+    read_spike_settings(np, spike_settings_, unused);
+  }
+  // true when the settings of both steps read without error
+  static bool settings_are_valid(const NP& np, std::string& message)
+  {
+    Spike_settings s;
+    Near_degenerate_settings d;
+    return read_spike_settings(np, s, message) && read_near_degenerate_settings(np, 0, d, message);
   }
   Spike_steps(const Spike_steps&) = delete;
   Spike_steps& operator=(const Spike_steps&) = delete;
@@ -82,7 +89,7 @@ public:
   {
     Step_outcome o;
     Spike_relaxation_result r =
-        scan_clean::relax_spikes_with(ops_, stats(), spike_settings_, vis, tracker_.get());
+        relax_spikes_with(ops_, stats(), spike_settings_, vis, tracker_.get());
     o.status = r.status;
     o.changes = r.vertices_relaxed;
     r.to_report(o.report);
@@ -94,7 +101,7 @@ public:
   {
     Step_outcome o;
     Spike_removal_result r =
-        scan_clean::remove_unrelaxable_spikes_with(ops_, stats(), spike_settings_, vis, tracker_.get());
+        remove_unrelaxable_spikes_with(ops_, stats(), spike_settings_, vis, tracker_.get());
     o.status = r.status;
     o.changes = r.faces_removed + r.dangling_faces_removed;
     o.faces_removed = r.faces_removed + r.dangling_faces_removed;
@@ -106,12 +113,11 @@ public:
   Step_outcome fix_near_degenerate(Visitor& vis)
   {
     Step_outcome o;
-    scan_clean::Near_degenerate_settings s;
+    Near_degenerate_settings s;  // the operation cap depends on the current edge count
     std::string unused;
-    scan_clean::read_near_degenerate_settings(parameters::default_values(), stats().edge_count(),
-                                              s, unused);
+    read_near_degenerate_settings(np_, stats().edge_count(), s, unused);
     Near_degenerate_faces_result r =
-        scan_clean::repair_near_degenerate_faces_with(ops_, stats(), s, vis);
+        repair_near_degenerate_faces_with(ops_, stats(), s, vis);
     o.status = r.status;
     o.changes = r.edges_collapsed + r.edges_flipped;
     o.faces_removed = r.faces_before - r.faces_after;

@@ -63,8 +63,8 @@ void split_pinched_vertices(TriangleMesh& tm, const VertexPointMap& vpm, Visitor
                             Gap_closing_result& r)
 {
   Phase_scope<VisitorHandle> phase(visitor, "manifold");
-  r.pinched_vertices_split = CGAL::Polygon_mesh_processing::duplicate_non_manifold_vertices(
-      tm, CGAL::parameters::vertex_point_map(vpm));
+  Local_operations<TriangleMesh, VertexPointMap> ops(tm, vpm);
+  r.pinched_vertices_split = ops.split_non_manifold_vertices();
   r.pinched_vertices = 0;
   auto counts = count_boundary(tm);
   r.boundary_edges_after = counts.first;
@@ -111,7 +111,7 @@ void bridge_narrow_loops(TriangleMesh& tm, const VertexPointMap& vpm, double tol
       for (std::size_t i = 0; i < c.size(); ++i) {
         const Vec3& a = c[i];
         const Vec3& b = c[(i + 1) % c.size()];
-        area = add(area, cross(sub(a, c[0]), sub(b, c[0])));
+        area = add(area, triangle_normal(c[0], a, b));
         perimeter += distance(a, b);
       }
       // |area| is twice the vector area
@@ -163,7 +163,7 @@ void bridge_narrow_loops(TriangleMesh& tm, const VertexPointMap& vpm, double tol
         }
       }
     }
-    const bool bridged = ops.insert_patch(h, [&](Operations& patch_ops, std::vector<vertex_descriptor>&,
+    const bool bridged = ops.insert_patch(h, [&](Patch_operations<TriangleMesh, VertexPointMap>& patch_ops, std::vector<vertex_descriptor>&,
                                                  std::vector<vertex_descriptor>&) {
       std::vector<face_descriptor> added;
       if (!triangulate_hole_checked(tm, h, vpm, true, added)) return false;
@@ -172,7 +172,7 @@ void bridge_narrow_loops(TriangleMesh& tm, const VertexPointMap& vpm, double tol
         const Vec3 p = point(vpm, source(fh, tm)), q = point(vpm, target(fh, tm)),
                    s = point(vpm, target(next(fh, tm), tm));
         const double l2 = std::max({squared_norm(sub(p, q)), squared_norm(sub(q, s)), squared_norm(sub(s, p))});
-        const Vec3 n = cross(sub(q, p), sub(s, p));
+        const Vec3 n = triangle_normal(p, q, s);
         if (!(dot(n, n) > 1e-24 * l2 * l2)) {
           patch_ops.remove_patch(added);
           return false;

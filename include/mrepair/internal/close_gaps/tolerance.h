@@ -80,7 +80,7 @@ Gap_tolerance_estimate estimate_tolerance(const TriangleMesh& tm, const VertexPo
       // the face is on the left of its halfedge b->a, so outward is n x (a->b)
       const halfedge_descriptor hi = opposite(h, tm);
       const Vec3 pc = point(vpm, target(next(hi, tm), tm));
-      const Vec3 n = cross(sub(p[a], p[b]), sub(pc, p[b]));
+      const Vec3 n = triangle_normal(p[b], p[a], pc);
       edge_outward.push_back(normalized(cross(n, sub(p[b], p[a]))));
     }
   const std::size_t nb = vd.size();

@@ -7,7 +7,7 @@
 #include <mrepair/internal/inspect/parallel.h>
 #include <mrepair/internal/inspect/self_intersections.h>
 #include <mrepair/internal/inspect/surface_arrays.h>
-#include <mrepair/internal/scan_clean/spike_criterion.h>
+#include <mrepair/internal/clean_scan_mesh/spike_criterion.h>
 #include <mrepair/internal/cgal_compat.h>
 #include <mrepair/internal/utility.h>
 

@@ -181,8 +181,11 @@ private:
         Local_operations<PM, VertexPointMap> ops(pm_, vpm_);
         std::vector<vertex_descriptor> survivors;
         taken = ops.remove_faces_without_pinches(doomed, &survivors);
-        clean_pipeline::Small_hole_filler<PM, VertexPointMap> filler(
-            ops, settings_.max_patch_vertices, 1., settings_.refine_patches, false, 30, 0.);
+        clean_pipeline::Hole_filling_settings patch;
+        patch.max_vertices = settings_.max_patch_vertices;
+        patch.refine = settings_.refine_patches;
+        patch.area_share = 0.;  // the round's own holes: no sheet border among them
+        clean_pipeline::Small_hole_filler<PM, VertexPointMap> filler(ops, patch);
         std::vector<halfedge_descriptor> hs, new_loops;
         for (vertex_descriptor v : survivors)
           for (halfedge_descriptor h : CGAL::halfedges_around_target(v, pm_))
@@ -191,8 +194,8 @@ private:
         filler.run_on(std::move(new_loops), 2, visitor);
         open = filler.result.open_holes.size();
         taken += filler.result.enlargement_faces_removed;
-        removed = ops.counts.faces_removed;
-        added = ops.counts.faces_added;
+        removed = ops.counts().faces_removed;
+        added = ops.counts().faces_added;
       }
       std::vector<Shell<PM>> found1 = shells_of(component);
       const std::size_t shells1 = found1.size(), loops1 = border_loop_count();

@@ -1,8 +1,8 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
 // The input check and the statistics set-up shared by
 // repair_near_degenerate_faces.h and relax_spikes.h.
-#ifndef MREPAIR_INTERNAL_SCAN_CLEAN_COMMON_H
-#define MREPAIR_INTERNAL_SCAN_CLEAN_COMMON_H
+#ifndef MREPAIR_INTERNAL_CLEAN_SCAN_MESH_COMMON_H
+#define MREPAIR_INTERNAL_CLEAN_SCAN_MESH_COMMON_H
 
 #include <mrepair/geometric_statistics.h>
 #include <mrepair/internal/bounded_walks.h>
@@ -20,11 +20,35 @@
 
 namespace mrepair {
 namespace internal {
-namespace scan_clean {
+namespace clean_pipeline {
 
-// Checks what every scan-cleaning call needs: a triangle mesh with finite
-// coordinates within `max_bbox_diagonal`. Returns ok, empty_input,
-// invalid_mesh or non_finite_input.
+// The checks every cleaning step's public call makes before it edits (the
+// pipeline makes them once, on entry): a sound halfedge structure (every walk
+// of the steps ends, bounded_walks.h), triangles when the step needs them,
+// and coordinates within range. A NaN point is each step's own business
+// (the pipeline removes those first). Returns ok, invalid_mesh or
+// non_finite_input, with `message`.
+template <typename Mesh, typename VPM>
+Status check_step_input(const Mesh& m, const VPM& vpm, bool triangles_needed, std::string& message)
+{
+  if (std::string broken = halfedge_structure_defect(m); !broken.empty()) {
+    message = "the mesh's halfedge structure is broken: " + broken;
+    return Status::invalid_mesh;
+  }
+  if (triangles_needed && !CGAL::is_triangle_mesh(m)) {
+    message = "the mesh is not triangulated";
+    return Status::invalid_mesh;
+  }
+  if (coordinates_too_large(m, vpm)) {
+    message = coordinates_too_large_message;
+    return Status::non_finite_input;
+  }
+  return Status::ok;
+}
+
+// Checks what the spike and near-degenerate calls need besides: faces, and
+// no non-finite coordinate (their statistics read every vertex). Returns ok,
+// empty_input, invalid_mesh or non_finite_input.
 template <typename Mesh, typename VPM>
 Status check_input(const Mesh& m, const VPM& vpm, std::string& message)
 {
@@ -40,19 +64,7 @@ Status check_input(const Mesh& m, const VPM& vpm, std::string& message)
       return Status::non_finite_input;
     }
   }
-  if (coordinates_too_large(m, vpm)) {
-    message = coordinates_too_large_message;
-    return Status::non_finite_input;
-  }
-  if (std::string broken = halfedge_structure_defect(m); !broken.empty()) {
-    message = "the mesh's halfedge structure is broken: " + broken;
-    return Status::invalid_mesh;
-  }
-  if (!CGAL::is_triangle_mesh(m)) {
-    message = "the mesh is not triangulated";
-    return Status::invalid_mesh;
-  }
-  return Status::ok;
+  return check_step_input(m, vpm, true, message);
 }
 
 // The overloads that compute the statistics themselves: reads the vertex
@@ -73,8 +85,8 @@ Result with_fresh_statistics(Mesh& tm, const NP& np, Result r, Run&& run)
   return run(stats);
 }
 
-} // namespace scan_clean
+} // namespace clean_pipeline
 } // namespace internal
 } // namespace mrepair
 
-#endif // MREPAIR_INTERNAL_SCAN_CLEAN_COMMON_H
+#endif // MREPAIR_INTERNAL_CLEAN_SCAN_MESH_COMMON_H

@@ -1,13 +1,17 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
 // Workers of relax_spikes() and remove_unrelaxable_spikes() (RameshCleaner 3.7, 3.8).
-#ifndef MREPAIR_INTERNAL_SCAN_CLEAN_SPIKES_IMPL_H
-#define MREPAIR_INTERNAL_SCAN_CLEAN_SPIKES_IMPL_H
+#ifndef MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SPIKES_H
+#define MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SPIKES_H
 
 #include <mrepair/cleaning_results.h>
 #include <mrepair/geometric_statistics.h>
+#include <mrepair/status.h>
+#include <mrepair/visitors.h>
+#include <mrepair/parameters.h>
+#include <mrepair/definitions.h>
 #include <mrepair/internal/local_operations.h>
-#include <mrepair/internal/scan_clean/common.h>
-#include <mrepair/internal/scan_clean/spike_criterion.h>
+#include <mrepair/internal/clean_scan_mesh/common.h>
+#include <mrepair/internal/clean_scan_mesh/spike_criterion.h>
 
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -21,7 +25,7 @@
 
 namespace mrepair {
 namespace internal {
-namespace scan_clean {
+namespace clean_pipeline {
 
 struct Spike_settings
 {
@@ -29,9 +33,9 @@ struct Spike_settings
   double height_factor = default_spike_height_factor;  // second criterion; <= 0 disables it
   double start_angle = 0;          // a, radians
   double full_angle = 0;           // b, radians
-  std::size_t rings = 3;           // n of the working region
-  std::size_t max_iterations = 10;
-  std::size_t max_removal_rounds = 3;
+  std::size_t rings = defaults::relax_rings;  // n of the working region
+  std::size_t max_iterations = defaults::max_relax_iterations;
+  std::size_t max_removal_rounds = defaults::max_spike_removal_rounds;
 };
 
 // Spike tests on current statistics.
@@ -455,10 +459,10 @@ private:
   {
     std::vector<vertex_descriptor> survivors, gone;
     const std::size_t asked = F.size();
-    const std::size_t pinches = ops_.counts.pinches_resolved;
+    const std::size_t pinches = ops_.counts().pinches_resolved;
     ops_.remove_faces_without_pinches(F, &survivors, &gone);
     c_.dangling_faces_removed += F.size() - asked;
-    c_.pinched_vertices_fixed += ops_.counts.pinches_resolved - pinches;
+    c_.pinched_vertices_fixed += ops_.counts().pinches_resolved - pinches;
     c_.vertices_removed += gone.size();
     // only the mark of a removed vertex is read from now on
     for (vertex_descriptor x : gone) put(alive_, x, 0u);
@@ -540,8 +544,51 @@ Spike_removal_result remove_unrelaxable_spikes_with(Local_operations<Mesh, VPM>&
   return r;
 }
 
-} // namespace scan_clean
+// ---- Settings: read once from the named parameters of the public call or
+// of the pipeline, which forwards its own.
+template <typename NP>
+bool read_spike_settings(const NP& np, Spike_settings& s, std::string& message)
+{
+  const double angle = get_or<double>(np, internal_np::spike_angle, defaults::spike_angle);
+  const double a = get_or<double>(np, internal_np::relax_start_angle, angle / 2);
+  const double b = get_or<double>(np, internal_np::relax_full_angle, angle);
+  s.height_factor = get_or<double>(np, internal_np::spike_height_factor, default_spike_height_factor);
+  s.rings = get_or<std::size_t>(np, internal_np::relax_rings, defaults::relax_rings);
+  s.max_iterations = get_or<std::size_t>(np, internal_np::max_relax_iterations, defaults::max_relax_iterations);
+  s.max_removal_rounds =
+      get_or<std::size_t>(np, internal_np::max_spike_removal_rounds, defaults::max_spike_removal_rounds);
+  if (!(angle >= 0 && angle <= 180) || !(a >= 0 && a <= 180) || !(b >= 0 && b <= 180) ||
+      !std::isfinite(s.height_factor)) {
+    message = "spike_angle, relax_start_angle, relax_full_angle in [0,180]; finite spike_height_factor";
+    return false;
+  }
+  s.spike_angle = to_radians(angle);
+  s.start_angle = to_radians(a);
+  s.full_angle = to_radians(b);
+  return true;
+}
+
+// Both spike calls on given statistics: phase, settings, then `worker` on
+// local operations that keep `stats` current.
+template <typename Result, typename Mesh, typename VPM, typename NP, typename Worker>
+Result run_spike_call(Mesh& tm, Geometric_statistics<Mesh, VPM>& stats, const NP& np,
+                      const char* phase_name, Worker&& worker)
+{
+  Visitor_handle<NP> vis(np);
+  Phase_scope<Visitor_handle<NP>> phase(vis, phase_name);
+  Spike_settings s;
+  Result r;
+  if (!read_spike_settings(np, s, r.message)) {
+    r.status = Status::invalid_parameter;
+    return r;
+  }
+  Local_operations<Mesh, VPM> ops(tm, stats.vertex_point_map());
+  ops.keep_current(&stats);
+  return worker(ops, stats, s, vis);
+}
+
+} // namespace clean_pipeline
 } // namespace internal
 } // namespace mrepair
 
-#endif // MREPAIR_INTERNAL_SCAN_CLEAN_SPIKES_IMPL_H
+#endif // MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SPIKES_H

@@ -1,13 +1,15 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
 // Worker of repair_near_degenerate_faces() (RameshCleaner 3.6, Algorithm 1).
-#ifndef MREPAIR_INTERNAL_SCAN_CLEAN_NEAR_DEGENERATE_IMPL_H
-#define MREPAIR_INTERNAL_SCAN_CLEAN_NEAR_DEGENERATE_IMPL_H
+#ifndef MREPAIR_INTERNAL_CLEAN_SCAN_MESH_NEAR_DEGENERATE_FACES_H
+#define MREPAIR_INTERNAL_CLEAN_SCAN_MESH_NEAR_DEGENERATE_FACES_H
 
 #include <mrepair/cleaning_results.h>
 #include <mrepair/definitions.h>
 #include <mrepair/geometric_statistics.h>
+#include <mrepair/status.h>
+#include <mrepair/parameters.h>
 #include <mrepair/internal/local_operations.h>
-#include <mrepair/internal/scan_clean/common.h>
+#include <mrepair/internal/clean_scan_mesh/common.h>
 
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -22,7 +24,7 @@
 
 namespace mrepair {
 namespace internal {
-namespace scan_clean {
+namespace clean_pipeline {
 
 struct Near_degenerate_settings
 {
@@ -243,7 +245,7 @@ private:
         // f = (x, a, b) in order, starting at the corner x
         const Vec a = st_.point(target(next(hx, tm_), tm_));
         const Vec b = st_.point(source(hx, tm_));
-        const Vec n = cross(sub(a, p), sub(b, p));
+        const Vec n = triangle_normal(p, a, b);
         const double nn = norm(n);
         const double scale = dot(sub(a, p), sub(a, p)) +
                              dot(sub(b, p), sub(b, p)) +
@@ -291,14 +293,14 @@ private:
       const vertex_descriptor c = target(next(g, tm_), tm_), d = target(next(og, tm_), tm_);
       const Vec pa = st_.point(a), pb = st_.point(b), pc = st_.point(c), pd = st_.point(d);
       // reference: area-weighted normal of the two old faces (a,b,c), (b,a,d)
-      const Vec n1 = cross(sub(pb, pa), sub(pc, pa));
-      const Vec n2 = cross(sub(pa, pb), sub(pd, pb));
+      const Vec n1 = triangle_normal(pa, pb, pc);
+      const Vec n2 = triangle_normal(pb, pa, pd);
       const Vec ref{{n1[0] + n2[0], n1[1] + n2[1], n1[2] + n2[2]}};
       const double nref = norm(ref);
       if (!(nref > 0)) continue;
       // new faces (a,d,c) and (d,b,c)
-      const Vec m1 = cross(sub(pd, pa), sub(pc, pa));
-      const Vec m2 = cross(sub(pb, pd), sub(pc, pd));
+      const Vec m1 = triangle_normal(pa, pd, pc);
+      const Vec m2 = triangle_normal(pd, pb, pc);
       const double nm1 = norm(m1), nm2 = norm(m2);
       if (!(nm1 > 0) || !(nm2 > 0)) continue;
       if (dot(m1, ref) < cos_dev_ * nm1 * nref || dot(m2, ref) < cos_dev_ * nm2 * nref)
@@ -372,8 +374,36 @@ Near_degenerate_faces_result repair_near_degenerate_faces_with(
   return r;
 }
 
-} // namespace scan_clean
+// ---- Settings: read once from the named parameters of the public call or
+// of the pipeline, which forwards its own.
+// `max_degenerate_operations` defaults to 3 x edges + 100: collapses alone
+// cannot exceed |E|; the cap bounds flip sequences.
+template <typename NP>
+bool read_near_degenerate_settings(const NP& np, std::size_t edge_count,
+                                   Near_degenerate_settings& s, std::string& message)
+{
+  Near_degenerate_criterion& k = s.criterion;
+  k.zero_edge_factor = get_or<double>(np, internal_np::zero_edge_factor, defaults::zero_edge_factor);
+  k.skinny_edge_factor =
+      get_or<double>(np, internal_np::skinny_edge_factor, defaults::skinny_edge_factor);
+  const double skinny_deg = get_or<double>(np, internal_np::skinny_angle, defaults::skinny_angle);
+  const double dev_deg = get_or<double>(np, internal_np::max_normal_deviation, defaults::max_normal_deviation);
+  s.max_operations =
+      get_or<std::size_t>(np, internal_np::max_degenerate_operations, 3 * edge_count + 100);
+  if (!(k.zero_edge_factor >= 0) || !std::isfinite(k.zero_edge_factor) ||
+      !(k.skinny_edge_factor >= 0) || !std::isfinite(k.skinny_edge_factor) ||
+      !(skinny_deg >= 0 && skinny_deg <= 180) || !(dev_deg > 0 && dev_deg <= 180)) {
+    message = "zero_edge_factor, skinny_edge_factor >= 0; skinny_angle in [0,180]; "
+              "max_normal_deviation in (0,180]";
+    return false;
+  }
+  k.skinny_angle = to_radians(skinny_deg);
+  s.max_normal_deviation = to_radians(dev_deg);
+  return true;
+}
+
+} // namespace clean_pipeline
 } // namespace internal
 } // namespace mrepair
 
-#endif // MREPAIR_INTERNAL_SCAN_CLEAN_NEAR_DEGENERATE_IMPL_H
+#endif // MREPAIR_INTERNAL_CLEAN_SCAN_MESH_NEAR_DEGENERATE_FACES_H

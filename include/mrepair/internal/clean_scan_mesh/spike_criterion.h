@@ -7,15 +7,13 @@
 //     link edge length from the plane of its link (centroid of the link
 //     vertices, Newell normal of the link polygon).
 // Light on purpose: no mesh type, only doubles.
-#ifndef MREPAIR_INTERNAL_SCAN_CLEAN_SPIKE_CRITERION_H
-#define MREPAIR_INTERNAL_SCAN_CLEAN_SPIKE_CRITERION_H
+#ifndef MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SPIKE_CRITERION_H
+#define MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SPIKE_CRITERION_H
 
 #include <mrepair/parameters.h>
 
 #include <cmath>
 #include <cstddef>
-
-MREPAIR_ADD_NAMED_PARAMETER(spike_height_factor)  // second spike criterion (2; 0 disables)
 
 namespace mrepair {
 namespace internal {
@@ -102,4 +100,4 @@ bool is_spiked_vertex(double max_dihedral_radians, double spike_angle_radians,
 }  // namespace internal
 }  // namespace mrepair
 
-#endif  // MREPAIR_INTERNAL_SCAN_CLEAN_SPIKE_CRITERION_H
+#endif  // MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SPIKE_CRITERION_H

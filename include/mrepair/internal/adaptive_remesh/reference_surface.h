@@ -2,8 +2,8 @@
 // The input surface kept for back-projection: a triangle soup with an AABB
 // tree, the input feature/boundary polylines as segments with their own tree,
 // and the sizing field (target edge length per input vertex).
-#ifndef MREPAIR_INTERNAL_REMESH_REFERENCE_SURFACE_H
-#define MREPAIR_INTERNAL_REMESH_REFERENCE_SURFACE_H
+#ifndef MREPAIR_INTERNAL_ADAPTIVE_REMESH_REFERENCE_SURFACE_H
+#define MREPAIR_INTERNAL_ADAPTIVE_REMESH_REFERENCE_SURFACE_H
 
 #include <mrepair/internal/cgal_compat.h>
 #include <mrepair/internal/utility.h>
@@ -374,4 +374,4 @@ public:
 } // namespace internal
 } // namespace mrepair
 
-#endif // MREPAIR_INTERNAL_REMESH_REFERENCE_SURFACE_H
+#endif // MREPAIR_INTERNAL_ADAPTIVE_REMESH_REFERENCE_SURFACE_H

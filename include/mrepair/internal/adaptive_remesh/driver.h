@@ -1,6 +1,6 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
-#ifndef MREPAIR_INTERNAL_REMESH_DRIVER_H
-#define MREPAIR_INTERNAL_REMESH_DRIVER_H
+#ifndef MREPAIR_INTERNAL_ADAPTIVE_REMESH_DRIVER_H
+#define MREPAIR_INTERNAL_ADAPTIVE_REMESH_DRIVER_H
 
 // The driver of every remeshing call of adaptive_remesh.h, once the named
 // parameters are read and the input is checked: the part to remesh, the
@@ -8,7 +8,8 @@
 // or face count with its corrections of the target length), and the write
 // back.
 
-#include <mrepair/internal/remesh/remesher.h>
+#include <mrepair/definitions.h>
+#include <mrepair/internal/adaptive_remesh/remesher.h>
 #include <mrepair/internal/utility.h>
 #include <mrepair/remeshing_result.h>
 #include <mrepair/status.h>
@@ -41,7 +42,7 @@ struct Remesh_options
   bool project = true;       ///< do_project
   double density = 1.;       ///< remesh_density_factor
   double gamma = 1.;         ///< remesh_gamma
-  double feature_angle = 44.;  ///< degrees; <= 0 or >= 180: no detection
+  double feature_angle = defaults::remesh_feature_angle;  ///< degrees; <= 0 or >= 180: no detection
   bool has_ecm = false;      ///< an edge_is_constrained_map was given
   double min_edge_length = 0, max_edge_length = 0;  ///< adaptive mode
 };
@@ -120,7 +121,7 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
     R.set_relax_lines(o.relax_lines);
     vis.start_phase("setup");
     R.setup(in_part, is_feature, is_fixed, o.protect,
-            cos_feature <= 1. ? cos_feature : std::cos(44. * pi / 180.));
+            cos_feature <= 1. ? cos_feature : std::cos(defaults::remesh_feature_angle * pi / 180.));
     vis.end_phase("setup");
     res.feature_edges = R.feature_edges;
     res.corners = R.corners;
@@ -194,4 +195,4 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
 } // namespace internal
 } // namespace mrepair
 
-#endif // MREPAIR_INTERNAL_REMESH_DRIVER_H
+#endif // MREPAIR_INTERNAL_ADAPTIVE_REMESH_DRIVER_H

@@ -21,10 +21,10 @@
 //   collapses and flips never create a fold (two adjacent faces with normals
 //   more than 120 degrees apart that were not folded before): folds at thin
 //   parts were the self-intersections of coarse remeshing
-#ifndef MREPAIR_INTERNAL_REMESH_REMESHER_H
-#define MREPAIR_INTERNAL_REMESH_REMESHER_H
+#ifndef MREPAIR_INTERNAL_ADAPTIVE_REMESH_REMESHER_H
+#define MREPAIR_INTERNAL_ADAPTIVE_REMESH_REMESHER_H
 
-#include <mrepair/internal/remesh/reference_surface.h>
+#include <mrepair/internal/adaptive_remesh/reference_surface.h>
 #include <mrepair/internal/utility.h>
 #include <mrepair/status.h>
 
@@ -1014,4 +1014,4 @@ public:
 } // namespace internal
 } // namespace mrepair
 
-#endif // MREPAIR_INTERNAL_REMESH_REMESHER_H
+#endif // MREPAIR_INTERNAL_ADAPTIVE_REMESH_REMESHER_H
