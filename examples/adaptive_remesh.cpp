@@ -45,9 +45,9 @@ int main(int argc, char** argv)
               << r.corners << " corners" << std::endl;
   };
 
-  // 1. uniform, edges of 1% of the diagonal, sharp edges above 44 degrees kept
+  // 1. uniform, edges of 3% of the diagonal, sharp edges above 44 degrees kept
   Mesh uniform = input;
-  auto r1 = mrepair::isotropic_remesh(uniform, 0.01 * diag);
+  auto r1 = mrepair::isotropic_remesh(uniform, 0.03 * diag);
   print("uniform", r1);
 
   // 2. adaptive: tolerance 0.05% of the diagonal, in parallel when TBB is there
@@ -62,7 +62,7 @@ int main(int argc, char** argv)
   auto ecm = get(CGAL::dynamic_edge_property_t<bool>(), featured);
   for (auto e : edges(featured)) put(ecm, e, CGAL::is_border_edge(halfedge(e, featured), featured));
   auto r3 = mrepair::isotropic_remesh(
-      featured, 0.02 * diag, CGAL::parameters::edge_is_constrained_map(ecm).protect_constraints(true));
+      featured, 0.05 * diag, CGAL::parameters::edge_is_constrained_map(ecm).protect_constraints(true));
   print("user edge map (border edges), protected", r3);
 
   // 4. a part of the uniform result, twice finer: the faces whose first vertex lies in
@@ -74,7 +74,7 @@ int main(int argc, char** argv)
   const double zmid = 0.5 * (b.zmin() + b.zmax());
   for (auto f : faces(poly))
     if (f->halfedge()->vertex()->point().z() < zmid) part.push_back(f);
-  auto r4 = mrepair::isotropic_remesh(part, poly, 0.006 * diag);
+  auto r4 = mrepair::isotropic_remesh(part, poly, 0.02 * diag);
   print("part (Polyhedron_3)", r4);
 
   bool ok = mrepair::succeeded(r1.status) && mrepair::succeeded(r2.status) &&
