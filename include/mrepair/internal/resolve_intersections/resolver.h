@@ -422,11 +422,20 @@ private:
           ok = false;
         }
         ok = ok && CGAL::is_valid_polygon_mesh(out) && CGAL::is_closed(out) && CGAL::is_triangle_mesh(out);
+        // CGAL numbers what the corefinement creates in an order of heap
+        // addresses, and those vary with the thread timing of the stages
+        // before (see copy_in_canonical_order): the union goes on, and into
+        // the mesh, in an order of its geometry alone, so that the output is
+        // the same file on every run. A refused union may have refined `acc`.
+        if (ok || (CGAL::is_valid_polygon_mesh(acc) && CGAL::is_triangle_mesh(acc))) {
+          PM canonical;
+          copy_in_canonical_order(ok ? out : acc, canonical);
+          acc = std::move(canonical);
+        }
         if (!ok) {
           ++counts.unions_failed;
           continue;
         }
-        acc = std::move(out);
         merged.push_back(members[i]);
       }
       if (merged.size() < 2) continue;

@@ -6,9 +6,11 @@
 #ifndef MREPAIR_INTERNAL_RESOLVE_INTERSECTIONS_SHELLS_H
 #define MREPAIR_INTERNAL_RESOLVE_INTERSECTIONS_SHELLS_H
 
+#include <mrepair/internal/io/build_mesh.h>
 #include <mrepair/internal/utility.h>
 
 #include <CGAL/Bbox_3.h>
+#include <CGAL/Kernel/global_functions.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -19,7 +21,9 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <map>
+#include <string>
 #include <vector>
 
 namespace mrepair {
@@ -99,6 +103,33 @@ std::vector<Shell<PolygonMesh>> label_shells(const PolygonMesh& pm, VertexPointM
   return shells;
 }
 
+// Builds the empty mesh `out` from the triangles `triangles` over `points`
+// (a soup that is a polygon mesh), in their order: with the reader's
+// builder, a third of the time of polygon_soup_to_polygon_mesh.
+template <typename PolygonMesh, typename Point>
+void build_from_triangles(const std::vector<Point>& points, const std::vector<std::array<std::size_t, 3>>& triangles,
+                          PolygonMesh& out)
+{
+  using vertex_descriptor = typename boost::graph_traits<PolygonMesh>::vertex_descriptor;
+  std::vector<std::int64_t> corners;
+  corners.reserve(3 * triangles.size());
+  std::vector<std::size_t> starts(1, 0);
+  starts.reserve(triangles.size() + 1);
+  for (const std::array<std::size_t, 3>& t : triangles) {
+    corners.insert(corners.end(), t.begin(), t.end());
+    starts.push_back(corners.size());
+  }
+  io::Soup_topology topology;
+  std::string why;
+  if (!topology.compute(points.size(), corners.data(), starts.data(), triangles.size(), why)) {
+    CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, triangles, out);
+    return;
+  }
+  auto out_points = get(CGAL::vertex_point, out);
+  io::build_mesh(topology, points.size(), corners.data(), starts.data(), triangles.size(), out,
+                 [&](vertex_descriptor v, std::size_t i) { put(out_points, v, points[i]); });
+}
+
 // Copies the faces `fs` of `pm` (one or more whole components, triangles)
 // into the empty mesh `out`, through a soup so that the face order does not
 // matter.
@@ -125,7 +156,74 @@ void copy_faces_out(const PolygonMesh& pm, VertexPointMap vpm, const FaceRange& 
     }
     if (k == 3) triangles.push_back(t);
   }
-  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, triangles, out);
+  build_from_triangles(points, triangles, out);
+}
+
+// Copies the triangle mesh `in` (its own point map) into the empty mesh
+// `out` in an order that depends on the geometry of `in` alone, not on the
+// order of its elements: the faces sorted by their corners (each face
+// starting at its least corner in xyz order, its orientation kept), the
+// vertices numbered as the sorted faces first use them. Two faces with the
+// same three corner points keep their order; no valid union has them.
+//
+// CGAL 5.5's corefinement numbers the vertices and faces it creates in an
+// order that depends on heap addresses: its box intersection breaks ties
+// between boxes with equal coordinates by the boxes' addresses
+// (`ID_FROM_BOX_ADDRESS` in Corefinement/intersection_impl.h), two vectors
+// allocated apart, and the intersections it finds go through unordered
+// containers whose iteration follows the order they were found in.
+template <typename PolygonMesh>
+void copy_in_canonical_order(const PolygonMesh& in, PolygonMesh& out)
+{
+  using GT = boost::graph_traits<PolygonMesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using face_descriptor = typename GT::face_descriptor;
+  using Point_map = typename boost::property_map<PolygonMesh, CGAL::vertex_point_t>::const_type;
+  using Point = typename boost::property_traits<Point_map>::value_type;
+  using Triangle = std::array<std::size_t, 3>;
+  const Point_map vpm = get(CGAL::vertex_point, in);
+  auto index = get(CGAL::dynamic_vertex_property_t<std::size_t>(), in);
+  std::vector<Point> points;
+  points.reserve(vertices(in).size());
+  for (vertex_descriptor v : vertices(in)) {
+    put(index, v, points.size());
+    points.push_back(get(vpm, v));
+  }
+  auto less = [&](std::size_t a, std::size_t b) { return CGAL::compare_xyz(points[a], points[b]) == CGAL::SMALLER; };
+  std::vector<Triangle> triangles;
+  triangles.reserve(faces(in).size());
+  for (face_descriptor f : faces(in)) {
+    Triangle t;
+    int k = 0;
+    for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, in), in)) {
+      if (k < 3) t[k] = get(index, v);
+      ++k;
+    }
+    if (k != 3) continue;
+    const int first = less(t[1], t[0]) ? (less(t[2], t[1]) ? 2 : 1) : (less(t[2], t[0]) ? 2 : 0);
+    std::rotate(t.begin(), t.begin() + first, t.end());
+    triangles.push_back(t);
+  }
+  std::stable_sort(triangles.begin(), triangles.end(), [&](const Triangle& s, const Triangle& t) {
+    for (int i = 0; i < 3; ++i) {
+      const CGAL::Comparison_result c = CGAL::compare_xyz(points[s[i]], points[t[i]]);
+      if (c != CGAL::EQUAL) return c == CGAL::SMALLER;
+    }
+    return false;
+  });
+  constexpr std::size_t unset = std::size_t(-1);
+  std::vector<std::size_t> renumbered(points.size(), unset);
+  std::vector<Point> sorted_points;
+  sorted_points.reserve(points.size());
+  for (Triangle& t : triangles)
+    for (std::size_t& c : t) {
+      if (renumbered[c] == unset) {
+        renumbered[c] = sorted_points.size();
+        sorted_points.push_back(points[c]);
+      }
+      c = renumbered[c];
+    }
+  build_from_triangles(sorted_points, triangles, out);
 }
 
 } // namespace solid
