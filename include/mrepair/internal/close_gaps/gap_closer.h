@@ -39,50 +39,8 @@ namespace internal {
 /// the region of `Gap_closer::start` that is the whole mesh.
 struct Gap_whole_mesh {};
 
-// the border halfedges of `m` in halfedge order, into `out`; returns the
-// number of halfedges. On Surface_mesh the scan runs in parallel over the
-// index range (the blocks are joined in order).
-template <class Mesh>
-std::size_t collect_border_halfedges(const Mesh& m,
-                                     std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor>& out)
-{
-  using halfedge_descriptor = typename boost::graph_traits<Mesh>::halfedge_descriptor;
-  out.clear();
-  if constexpr (Is_surface_mesh<Mesh>::value) {
-#ifdef CGAL_LINKED_WITH_TBB
-    using Acc = std::pair<std::size_t, std::vector<halfedge_descriptor>>;
-    const bool garbage = m.has_garbage();
-    Acc acc = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, m.num_halfedges(), 1 << 16),
-        Acc(),
-        [&](const tbb::blocked_range<std::size_t>& r, Acc a) {
-          for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            halfedge_descriptor h(static_cast<typename halfedge_descriptor::size_type>(i));
-            if (garbage && m.is_removed(h)) continue;
-            ++a.first;
-            if (is_border(h, m)) a.second.push_back(h);
-          }
-          return a;
-        },
-        [](Acc a, const Acc& b) {
-          a.first += b.first;
-          a.second.insert(a.second.end(), b.second.begin(), b.second.end());
-          return a;
-        });
-    out.swap(acc.second);
-    return acc.first;
-#endif
-  }
-  std::size_t n = 0;
-  for (halfedge_descriptor h : halfedges(m)) {
-    ++n;
-    if (is_border(h, m)) out.push_back(h);
-  }
-  return n;
-}
-
 // calls f(h) once per border cycle of `m`, with its first halfedge in
-// halfedge order (`border`: all border halfedges, from collect_border_halfedges).
+// halfedge order (`border`: all border halfedges, from border_halfedges).
 // A walk that does not come back to its start within the halfedge count (a
 // broken next(): issue 36's pentagon) stops there; returns false then.
 template <class Mesh, class F>
@@ -126,7 +84,7 @@ template <class Mesh>
 std::pair<std::size_t, std::size_t> count_boundary(const Mesh& m)
 {
   std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor> border;
-  collect_border_halfedges(m, border);
+  border_halfedges(m, border);
   std::size_t loops = 0;
   for_each_border_cycle(m, border, [&](typename boost::graph_traits<Mesh>::halfedge_descriptor) { ++loops; });
   return {border.size(), loops};
@@ -215,10 +173,11 @@ public:
     }
     const double* lo = box.data();
     const double* hi = box.data() + 3;
-    // border halfedges in one pass; a valid mesh has faces of degree >= 3, so it
-    // is a triangle mesh exactly when its inner halfedges are 3 per face.
+    // a valid mesh has faces of degree >= 3, so it is a triangle mesh exactly
+    // when its inner halfedges are 3 per face.
     std::vector<halfedge_descriptor> border;
-    const std::size_t nh = collect_border_halfedges(tm, border);
+    border_halfedges(tm, border);
+    const std::size_t nh = halfedge_count(tm);
     // the local rules that make every walk end (bounded_walks.h), in
     // O(halfedges) in every build; CGAL::is_valid_polygon_mesh is slow
     const std::string broken = halfedge_structure_defect(tm);
