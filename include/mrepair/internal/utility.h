@@ -117,7 +117,7 @@ template <typename T> struct Is_polyhedron : std::false_type {};
 template <typename T, typename I, template <class, class, class> class H, typename A>
 struct Is_polyhedron<CGAL::Polyhedron_3<T, I, H, A>> : std::true_type {};
 
-/// the number of faces (vertices) of a mesh, in O(1) on Surface_mesh and
+/// the number of faces (vertices, halfedges) of a mesh, in O(1) on Surface_mesh and
 /// Polyhedron_3. `faces(m).size()` walks the whole range (std::distance),
 /// and BGL's `num_faces()` counts a Surface_mesh's removed faces too:
 /// a local operation that asked for the count paid O(mesh) per call.
@@ -140,6 +140,16 @@ std::size_t vertex_count(const Mesh& m)
     return static_cast<std::size_t>(m.size_of_vertices());
   else
     return static_cast<std::size_t>(vertices(m).size());
+}
+template <typename Mesh>
+std::size_t halfedge_count(const Mesh& m)
+{
+  if constexpr (Is_surface_mesh<Mesh>::value)
+    return static_cast<std::size_t>(m.number_of_halfedges());
+  else if constexpr (Is_polyhedron<Mesh>::value)
+    return static_cast<std::size_t>(m.size_of_halfedges());
+  else
+    return static_cast<std::size_t>(halfedges(m).size());
 }
 
 /// true when `v` was removed from `m`: only `Surface_mesh` keeps removed

@@ -39,50 +39,8 @@ namespace internal {
 /// the region of `Gap_closer::start` that is the whole mesh.
 struct Gap_whole_mesh {};
 
-// the border halfedges of `m` in halfedge order, into `out`; returns the
-// number of halfedges. On Surface_mesh the scan runs in parallel over the
-// index range (the blocks are joined in order).
-template <class Mesh>
-std::size_t collect_border_halfedges(const Mesh& m,
-                                     std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor>& out)
-{
-  using halfedge_descriptor = typename boost::graph_traits<Mesh>::halfedge_descriptor;
-  out.clear();
-  if constexpr (Is_surface_mesh<Mesh>::value) {
-#ifdef CGAL_LINKED_WITH_TBB
-    using Acc = std::pair<std::size_t, std::vector<halfedge_descriptor>>;
-    const bool garbage = m.has_garbage();
-    Acc acc = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, m.num_halfedges(), 1 << 16),
-        Acc(),
-        [&](const tbb::blocked_range<std::size_t>& r, Acc a) {
-          for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            halfedge_descriptor h(static_cast<typename halfedge_descriptor::size_type>(i));
-            if (garbage && m.is_removed(h)) continue;
-            ++a.first;
-            if (is_border(h, m)) a.second.push_back(h);
-          }
-          return a;
-        },
-        [](Acc a, const Acc& b) {
-          a.first += b.first;
-          a.second.insert(a.second.end(), b.second.begin(), b.second.end());
-          return a;
-        });
-    out.swap(acc.second);
-    return acc.first;
-#endif
-  }
-  std::size_t n = 0;
-  for (halfedge_descriptor h : halfedges(m)) {
-    ++n;
-    if (is_border(h, m)) out.push_back(h);
-  }
-  return n;
-}
-
 // calls f(h) once per border cycle of `m`, with its first halfedge in
-// halfedge order (`border`: all border halfedges, from collect_border_halfedges).
+// halfedge order (`border`: all border halfedges, from border_halfedges).
 // A walk that does not come back to its start within the halfedge count (a
 // broken next(): issue 36's pentagon) stops there; returns false then.
 template <class Mesh, class F>
@@ -126,7 +84,7 @@ template <class Mesh>
 std::pair<std::size_t, std::size_t> count_boundary(const Mesh& m)
 {
   std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor> border;
-  collect_border_halfedges(m, border);
+  border_halfedges(m, border);
   std::size_t loops = 0;
   for_each_border_cycle(m, border, [&](typename boost::graph_traits<Mesh>::halfedge_descriptor) { ++loops; });
   return {border.size(), loops};
@@ -215,10 +173,11 @@ public:
     }
     const double* lo = box.data();
     const double* hi = box.data() + 3;
-    // border halfedges in one pass; a valid mesh has faces of degree >= 3, so it
-    // is a triangle mesh exactly when its inner halfedges are 3 per face.
+    // a valid mesh has faces of degree >= 3, so it is a triangle mesh exactly
+    // when its inner halfedges are 3 per face.
     std::vector<halfedge_descriptor> border;
-    const std::size_t nh = collect_border_halfedges(tm, border);
+    border_halfedges(tm, border);
+    const std::size_t nh = halfedge_count(tm);
     // the local rules that make every walk end (bounded_walks.h), in
     // O(halfedges) in every build; CGAL::is_valid_polygon_mesh is slow
     const std::string broken = halfedge_structure_defect(tm);
@@ -764,52 +723,106 @@ private:
   }
 
   // ---- the contraction -----------------------------------------------------
+  // One contraction of the pair of `u`, in the order of the paper's Algorithm 1:
+  //   plan      the faces it removes and adds, the vertex that moves, and
+  //             where it may go (plan_vertex_vertex, plan_vertex_edge)
+  //   check     every vertex whose star changes keeps a fan (stars_stay_manifold)
+  //   place     the first position that flips, degenerates and displaces
+  //             nothing (choose_placement)
+  //   apply     the edit, recorded for undo and redo (apply_contraction)
+  //   re-pair   new pairs where the border changed (update_pairs)
+  // The stages keep this order: their walks number the vertices they meet
+  // (id_of), and ids break ties in the queue and order the re-pairing.
+
+  // what the plan stage decides; the later stages read it
+  struct Contraction
+  {
+    Op op;                      // removed and added faces, the removed vertex (recorded when applied)
+    std::vector<Tri> ref;       // per added face: the face whose side it keeps
+    Id moved = npos;            // the vertex that takes the new position
+    std::array<P3, 3> place{};  // candidate positions: the λ point, then either end
+  };
+
   Outcome contract(Id u, double dist)
   {
+    Contraction c;
+    Outcome o = plan_contraction(u, c);
+    if (o != done) return o;
+    collect_affected(c.op);
+    if (!stars_stay_manifold(c)) return non_manifold;
+    P3 to{};
+    o = choose_placement(c, to);
+    if (o != done) return o;
+    if (!apply_contraction(c, to, dist)) return failed;
+    update_pairs(c.moved);
+    return done;
+  }
+
+  // plan: the pair is stale when its edge or vertex left the border since it
+  // was queued (the caller pairs the vertex again); non_manifold when the
+  // faces cannot be rewired at all.
+  Outcome plan_contraction(Id u, Contraction& c)
+  {
     const Pair pr = pair_[u];
-    Id a = ka(pr.edge), b = kb(pr.edge);
+    const Id a = ka(pr.edge), b = kb(pr.edge);
     if (!alive_[a] || !alive_[b] || !is_border_edge(a, b) || !is_boundary_vertex(u)) return stale;
-    Op op;
-    op.kind = pr.kind;
-    op.removed_vertex = npos;
-    std::vector<Tri> ref;
-    Id moved;
-    P3 to;
-    const P3 pu = pos(u);
-    if (pr.kind == vv) {
-      Id w = pr.target;
-      if (!alive_[w] || w == u) return stale;
-      bool adjacent = find_halfedge(u, w).second || find_halfedge(w, u).second;
-      star(u, tmp2_);
-      for (const Tri& r : tmp2_) {
-        op.removed.push_back(r);
-        if (adjacent && (r[1] == w || r[2] == w)) continue;  // collapsed with the edge u-w
-        op.added.push_back(Tri{w, r[1], r[2]});
-        ref.push_back(r);
-      }
-      if (op.added.empty()) return non_manifold;
-      op.removed_vertex = u;
-      op.removed_position = get(vpm_, vd_[u]);
-      moved = w;
-      P3 pw = pos(w);
-      for (int d = 0; d < 3; ++d) to[d] = lambda_ * pu[d] + (1 - lambda_) * pw[d];
-    } else {
-      auto h = find_halfedge(a, b);
-      halfedge_descriptor o = opposite(h.first, tm_);
-      Id c = id_of(target(next(o, tm_), tm_));
-      if (c == u) return non_manifold;
-      op.removed.push_back(Tri{b, a, c});
-      op.added.push_back(Tri{b, u, c});
-      op.added.push_back(Tri{u, a, c});
-      ref.push_back(op.removed[0]);
-      ref.push_back(op.removed[0]);
-      moved = u;
-      double t = 0;
-      seg_dist(pu, pos(a), pos(b), t);
-      P3 pa = pos(a), pb = pos(b);
-      for (int d = 0; d < 3; ++d) to[d] = lambda_ * pu[d] + (1 - lambda_) * (pa[d] + t * (pb[d] - pa[d]));
+    c.op.kind = pr.kind;
+    c.op.removed_vertex = npos;
+    if (pr.kind == vv) return plan_vertex_vertex(u, pr.target, c);
+    return plan_vertex_edge(u, a, b, c);
+  }
+
+  // vertex-vertex: u's faces go to w (those on the edge u-w, if any, vanish
+  // with it), u is removed and w moves. Candidates: the λ point, u, w.
+  Outcome plan_vertex_vertex(Id u, Id w, Contraction& c)
+  {
+    if (!alive_[w] || w == u) return stale;
+    const bool adjacent = find_halfedge(u, w).second || find_halfedge(w, u).second;
+    star(u, tmp2_);
+    for (const Tri& r : tmp2_) {
+      c.op.removed.push_back(r);
+      if (adjacent && (r[1] == w || r[2] == w)) continue;  // collapsed with the edge u-w
+      c.op.added.push_back(Tri{w, r[1], r[2]});
+      c.ref.push_back(r);
     }
-    // affected vertices: every vertex of the removed and added faces
+    if (c.op.added.empty()) return non_manifold;
+    c.op.removed_vertex = u;
+    c.op.removed_position = get(vpm_, vd_[u]);
+    c.moved = w;
+    const P3 pu = pos(u), pw = pos(w);
+    P3 to;
+    for (int d = 0; d < 3; ++d) to[d] = lambda_ * pu[d] + (1 - lambda_) * pw[d];
+    c.place = {{to, pu, pw}};
+    return done;
+  }
+
+  // vertex-edge: the face on edge a-b splits in two at u, which moves.
+  // Candidates: the λ point, u in place, u on its projection onto a-b.
+  Outcome plan_vertex_edge(Id u, Id a, Id b, Contraction& c)
+  {
+    const halfedge_descriptor o = opposite(find_halfedge(a, b).first, tm_);
+    const Id opp = id_of(target(next(o, tm_), tm_));
+    if (opp == u) return non_manifold;
+    c.op.removed.push_back(Tri{b, a, opp});
+    c.op.added.push_back(Tri{b, u, opp});
+    c.op.added.push_back(Tri{u, a, opp});
+    c.ref.push_back(c.op.removed[0]);
+    c.ref.push_back(c.op.removed[0]);
+    c.moved = u;
+    const P3 pu = pos(u), pa = pos(a), pb = pos(b);
+    double t = 0;
+    seg_dist(pu, pa, pb, t);
+    P3 projection, to;
+    for (int d = 0; d < 3; ++d) projection[d] = pa[d] + t * (pb[d] - pa[d]);
+    for (int d = 0; d < 3; ++d) to[d] = lambda_ * pu[d] + (1 - lambda_) * projection[d];
+    c.place = {{to, pu, projection}};
+    return done;
+  }
+
+  // every vertex of the removed and added faces, once, sorted: whose star
+  // changes, and near whom the border changes
+  void collect_affected(const Op& op)
+  {
     affected_.clear();
     for (const Tri& t : op.removed)
       for (Id i : t) affected_.push_back(i);
@@ -817,93 +830,102 @@ private:
       for (Id i : t) affected_.push_back(i);
     std::sort(affected_.begin(), affected_.end());
     affected_.erase(std::unique(affected_.begin(), affected_.end()), affected_.end());
-    // vertex-vertex: a neighbour of u not adjacent to w only sees u renamed to w
-    // in its faces (w new in its link), so its fan keeps its shape: skip its check
+  }
+
+  // check: the edit must leave each affected vertex a star a halfedge graph
+  // can hold (star_ok). Vertex-vertex: a neighbour of u not adjacent to w
+  // only sees u renamed to w in its faces (w new in its link), so its fan
+  // keeps its shape: skip its check.
+  bool stars_stay_manifold(const Contraction& c)
+  {
+    const bool vertex_vertex = c.op.kind == vv;
     nbr_.clear();
-    if (pr.kind == vv) {
-      halfedge_descriptor hw = halfedge(vd_[moved], tm_);
+    if (vertex_vertex) {
+      halfedge_descriptor hw = halfedge(vd_[c.moved], tm_);
       if (hw != GT::null_halfedge())
         for (halfedge_descriptor h : CGAL::halfedges_around_target(hw, tm_)) nbr_.push_back(id_of(source(h, tm_)));
       std::sort(nbr_.begin(), nbr_.end());
     }
-    for (Id c : affected_) {
-      if (c == op.removed_vertex) continue;
-      if (pr.kind == vv && c != moved && !std::binary_search(nbr_.begin(), nbr_.end(), c)) continue;
-      if (!star_ok(c, op.removed, op.added)) return non_manifold;
+    for (Id x : affected_) {
+      if (x == c.op.removed_vertex) continue;
+      if (vertex_vertex && x != c.moved && !std::binary_search(nbr_.begin(), nbr_.end(), x)) continue;
+      if (!star_ok(x, c.op.removed, c.op.added)) return false;
     }
-    // geometry, for the merged position λv + (1-λ)v' first, then for either
-    // end (λ = 1, λ = 0): a sliver on one side of a seam flips under the
-    // midpoint but not when only the other side moves. The first placement
-    // that flips, degenerates and displaces nothing wins.
-    std::array<P3, 3> place{{to, pu, pos(moved)}};  // vertex-vertex: λ, on u, on w
-    if (pr.kind == ve) {  // vertex-edge: λ, u in place, u on its projection
-      double t = 0;
-      const P3 pa = pos(a), pb = pos(b);
-      seg_dist(pu, pa, pb, t);
-      for (int d = 0; d < 3; ++d) place[2][d] = pa[d] + t * (pb[d] - pa[d]);
-    }
-    star(moved, tmp_);
+    return true;
+  }
+
+  // place: the merged position λv + (1-λ)v' first, then either end (λ = 1,
+  // λ = 0): a sliver on one side of a seam flips under the midpoint but not
+  // when only the other side moves. The first candidate that passes wins;
+  // when none does, the λ point's failure is the outcome.
+  Outcome choose_placement(const Contraction& c, P3& to)
+  {
+    star(c.moved, tmp_);
     Outcome first = done;
-    bool placed = false;
-    for (int k = 0; k < 3 && !placed; ++k) {
-      if (k > 0 && place[k] == place[0]) continue;
-      const P3& cand = place[k];
-      Outcome o = done;
-      for (std::size_t i = 0; i < op.added.size() && o == done; ++i) o = check_face(op.added[i], ref[i], moved, cand);
-      for (const Tri& t : tmp_) {
-        if (o != done) break;
-        bool removed = false;
-        for (const Tri& r : op.removed) removed = removed || same_face(t, r);
-        if (!removed) o = check_face(t, t, moved, cand);
-      }
-      // no vertex drifts farther than the tolerance from its input position
-      // (one not moved yet is at its input position)
-      if (o == done && sqdist(cand, has_orig_[moved] ? p3(orig_[moved]) : pos(moved)) > max_dist_ * max_dist_)
-        o = displaced;
+    for (int k = 0; k < 3; ++k) {
+      if (k > 0 && c.place[k] == c.place[0]) continue;
+      const Outcome o = check_placement(c, c.place[k]);
       if (o == done) {
-        to = cand;
-        placed = true;
+        to = c.place[k];
         if (k > 0) ++alternative_placements_;
-      } else if (k == 0) {
-        first = o;
+        return done;
       }
+      if (k == 0) first = o;
     }
-    if (!placed) return first;
-    // boundary edges around the affected vertices before the edit
+    return first;
+  }
+
+  // one candidate: no face around the moved vertex (its star is in tmp_)
+  // flips or degenerates, an added face keeping the side of the face it
+  // replaces; and no vertex drifts farther than the tolerance from its input
+  // position (one not moved yet is at its input position)
+  Outcome check_placement(const Contraction& c, const P3& cand) const
+  {
+    for (std::size_t i = 0; i < c.op.added.size(); ++i) {
+      const Outcome o = check_face(c.op.added[i], c.ref[i], c.moved, cand);
+      if (o != done) return o;
+    }
+    for (const Tri& t : tmp_) {
+      bool removed = false;
+      for (const Tri& r : c.op.removed) removed = removed || same_face(t, r);
+      if (removed) continue;
+      const Outcome o = check_face(t, t, c.moved, cand);
+      if (o != done) return o;
+    }
+    const P3 origin = has_orig_[c.moved] ? p3(orig_[c.moved]) : pos(c.moved);
+    if (sqdist(cand, origin) > max_dist_ * max_dist_) return displaced;
+    return done;
+  }
+
+  // apply: edits the mesh (moving `moved` to `to`) and records the edit for
+  // undo and redo. The border edges around the affected vertices are taken
+  // first (before_), for the re-pairing. False when the edit was refused.
+  bool apply_contraction(Contraction& c, const P3& to, double dist)
+  {
     border_edges_around(affected_, before_);
+    Op& op = c.op;
     Point to_point(to[0], to[1], to[2]);
-    op.moves.push_back(Move{moved, get(vpm_, vd_[moved]), to_point});
-    if (!has_orig_[moved]) {
-      has_orig_[moved] = 1;
-      orig_[moved] = op.moves.back().from;
+    op.moves.push_back(Move{c.moved, get(vpm_, vd_[c.moved]), to_point});
+    if (!has_orig_[c.moved]) {
+      has_orig_[c.moved] = 1;
+      orig_[c.moved] = op.moves.back().from;
     }
     if (!run_edit(op.removed, op.added, npos, op.removed_position, op.removed_vertex, op.moves, true))
-      return failed;
+      return false;
     op.level = std::max(dist, current_distance());
     ops_.push_back(std::move(op));
     ++pos_;
+    return true;
+  }
 
-    // maintain the pairs (Algorithm 1, lines 8-14)
-    after_.clear();
+  // re-pair (Algorithm 1, lines 8-14): the vertices whose nearest border edge
+  // may have changed get a new pair.
+  void update_pairs(Id moved)
+  {
     border_edges_around(affected_, after_);
-    // vertices paired with an edge that left the border or moved need a new
-    // pair; an edge still on the border with both ends in place keeps its pairs
     recompute_.clear();
-    for (std::uint64_t e : before_) {
-      const bool changed =
-          ka(e) == moved || kb(e) == moved || !std::binary_search(after_.begin(), after_.end(), e);
-      for (Id v = head_[ka(e)]; v != npos; v = next_[v])
-        if (pair_[v].edge == e && (changed || rejected_[v])) recompute_.push_back(v);
-    }
-    // keep only the new boundary edges and those that moved: the others are
-    // registered already and cannot be nearer to anyone than before
-    after_.erase(std::remove_if(after_.begin(), after_.end(),
-                                [&](std::uint64_t e) {
-                                  return ka(e) != moved && kb(e) != moved &&
-                                         std::binary_search(before_.begin(), before_.end(), e);
-                                }),
-                 after_.end());
-    for (std::uint64_t e : after_) grid_.insert(e, pos(ka(e)), pos(kb(e)));
+    collect_pairs_on_changed_edges(moved);
+    register_changed_edges(moved);
     // of the affected vertices only the moved one needs a new pair: the others
     // keep their position and their paired edge (else it is in before_); one that
     // left the border or was removed is caught when its entry is popped (stale)
@@ -912,9 +934,44 @@ private:
     if (ops_.back().removed_vertex != npos) recompute_.push_back(ops_.back().removed_vertex);
     for (Id c : affected_)
       if (rejected_[c]) recompute_.push_back(c);
-    // The paper recomputes only the vertices paired with a changed edge; a
-    // changed edge may also become the nearest one of other vertices (or the
-    // first one within reach), so look for those too.
+    collect_vertices_near_changed_edges(moved);
+    std::sort(recompute_.begin(), recompute_.end());
+    recompute_.erase(std::unique(recompute_.begin(), recompute_.end()), recompute_.end());
+    for (Id v : recompute_) compute_pair(v);
+  }
+
+  // vertices paired with an edge that left the border or moved need a new
+  // pair; an edge still on the border with both ends in place keeps its pairs
+  // (but a pair rejected earlier is retried)
+  void collect_pairs_on_changed_edges(Id moved)
+  {
+    for (std::uint64_t e : before_) {
+      const bool changed =
+          ka(e) == moved || kb(e) == moved || !std::binary_search(after_.begin(), after_.end(), e);
+      for (Id v = head_[ka(e)]; v != npos; v = next_[v])
+        if (pair_[v].edge == e && (changed || rejected_[v])) recompute_.push_back(v);
+    }
+  }
+
+  // keeps in after_ only the new border edges and those that moved, and
+  // registers them: the others are registered already and cannot be nearer
+  // to anyone than before
+  void register_changed_edges(Id moved)
+  {
+    after_.erase(std::remove_if(after_.begin(), after_.end(),
+                                [&](std::uint64_t e) {
+                                  return ka(e) != moved && kb(e) != moved &&
+                                         std::binary_search(before_.begin(), before_.end(), e);
+                                }),
+                 after_.end());
+    for (std::uint64_t e : after_) grid_.insert(e, pos(ka(e)), pos(kb(e)));
+  }
+
+  // The paper recomputes only the vertices paired with a changed edge; a
+  // changed edge (after_) may also become the nearest one of other vertices
+  // (or the first one within reach), so look for those too.
+  void collect_vertices_near_changed_edges(Id moved)
+  {
     vgrid_.insert(moved, pos(moved), pos(moved));
     for (std::uint64_t e : after_) {
       P3 pa = pos(ka(e)), pb = pos(kb(e));
@@ -926,10 +983,6 @@ private:
         if (pair_[v].kind == none || d < pair_[v].dist) recompute_.push_back(v);
       });
     }
-    std::sort(recompute_.begin(), recompute_.end());
-    recompute_.erase(std::unique(recompute_.begin(), recompute_.end()), recompute_.end());
-    for (Id v : recompute_) compute_pair(v);
-    return done;
   }
 
   void border_edges_around(const std::vector<Id>& vs, std::vector<std::uint64_t>& out)

@@ -96,7 +96,7 @@ void bridge_narrow_loops(TriangleMesh& tm, const VertexPointMap& vpm, double tol
   std::vector<halfedge_descriptor> loops;
   {
     std::vector<halfedge_descriptor> border;
-    collect_border_halfedges(tm, border);
+    border_halfedges(tm, border);
     std::vector<Vec3> c;
     const bool closed = for_each_border_cycle(tm, border, [&](halfedge_descriptor h) {
       c.clear();

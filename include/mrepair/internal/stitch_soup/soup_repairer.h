@@ -838,24 +838,93 @@ public:
   }
 
   // ---------------------------------------------------------------- stitch
-  // Glues boundary sides whose ends lie within eps. Returns true if any vertex was merged.
-  bool stitch(double eps)
+  // Glues boundary sides whose ends lie within eps. Each stage hands its
+  // decisions to the next as a value:
+  //   match    boundary side pairs, nearest first, each side in one pair at
+  //            most (match_boundary_sides)
+  //   orient   which components flip so that glued sides run opposite ways,
+  //            and which pairs cannot agree (choose_component_flips)
+  //   merge    the vertex pairs the agreeing side pairs join (vertex_merges),
+  //            less those that would merge two corners of a face (surviving_merges)
+  //   apply    flip the glued components, then merge (flip_glued_components)
+
+  // two boundary sides to glue; `same` when they run the same way (then one
+  // of their components must flip)
+  struct Side_pair
+  {
+    double score;  // the larger squared distance between matched ends
+    Idx a, b;      // slots, a < b
+    bool same;
+  };
+  // the two vertex pairs {v[0], v[1]} and {v[2], v[3]} that side pair `pair` joins
+  struct Vertex_merge
+  {
+    std::array<Idx, 4> v;
+    std::size_t pair;
+  };
+  struct Component_flips
+  {
+    std::vector<unsigned char> flip;     // per component: 1 when it flips
+    std::vector<unsigned char> pair_ok;  // per side pair: it agrees with the flips
+  };
+  struct Surviving_merges
+  {
+    std::vector<unsigned char> live;  // per merge
+    std::vector<Idx> root;            // per vertex: the vertex it merges into (itself if none); filled when any
+    bool any = false;
+  };
+  // what stitch() did, for the pipeline to record
+  struct Stitch_outcome
+  {
+    bool merged = false;  // vertices were merged: pairing, orientation and splitting must run again
+    std::size_t components_flipped = 0;
+  };
+
+  Stitch_outcome stitch(double eps)
+  {
+    Stitch_outcome out;
+    const std::vector<Side_pair> pairs = match_boundary_sides(eps);
+    if (pairs.empty()) return out;
+    const Component_flips flips = choose_component_flips(pairs);
+    const std::vector<Vertex_merge> merges = vertex_merges(pairs, flips.pair_ok);
+    const Surviving_merges kept = surviving_merges(merges);
+    if (!kept.any) return out;
+    out.components_flipped = flip_glued_components(pairs, merges, kept.live, flips.flip);
+    for (auto& t : T)
+      for (Idx& v : t) v = kept.root[v];
+    out.merged = true;
+    return out;
+  }
+
+  // match: greedily, the nearest candidate first (ties by slots), each side
+  // in one pair at most
+  std::vector<Side_pair> match_boundary_sides(double eps) const
   {
     const std::size_t S = 3 * T.size();
     std::vector<Idx> bnd;
     for (std::size_t s = 0; s < S; ++s)
       if (partner[s] == none) bnd.push_back(Idx(s));
-    if (bnd.size() < 2) return false;
+    if (bnd.size() < 2) return {};
+    std::vector<Side_pair> cand = stitch_candidates(bnd, eps);
+    std::sort(cand.begin(), cand.end(), [](const Side_pair& x, const Side_pair& y) {
+      return x.score < y.score || (x.score == y.score && (x.a < y.a || (x.a == y.a && x.b < y.b)));
+    });
+    std::vector<unsigned char> matched(S, 0);
+    std::vector<Side_pair> pairs;
+    for (const Side_pair& c : cand) {
+      if (matched[c.a] || matched[c.b]) continue;
+      matched[c.a] = matched[c.b] = 1;
+      pairs.push_back(c);
+    }
+    return pairs;
+  }
 
-    // grid over the source points of boundary sides
+  // the boundary side pairs whose ends lie within eps of each other, either
+  // way round; found through a grid over the sides' source points
+  std::vector<Side_pair> stitch_candidates(const std::vector<Idx>& bnd, double eps) const
+  {
     const Point_grid<Idx> grid(cell_size(eps), bnd, [&](Idx slot) -> const Vec& { return P[src(slot)]; });
-    struct Cand
-    {
-      double score;
-      Idx a, b;
-      bool same;
-    };
-    std::vector<Cand> cand;
+    std::vector<Side_pair> cand;
     const double eps2 = eps * eps;
     auto scan = [&](Idx s, const Vec& near_src, const Vec& near_dst, bool same) {
       grid.for_each_near(near_src, [&](Idx h) {
@@ -871,138 +940,186 @@ public:
       scan(s, P[dst(s)], P[src(s)], false);  // opposite direction: glues as is
       scan(s, P[src(s)], P[dst(s)], true);   // same direction: one side must flip
     }
-    if (cand.empty()) return false;
-    std::sort(cand.begin(), cand.end(), [](const Cand& x, const Cand& y) {
-      return x.score < y.score || (x.score == y.score && (x.a < y.a || (x.a == y.a && x.b < y.b)));
-    });
-    std::vector<unsigned char> matched(S, 0);
-    std::vector<Cand> acc;
-    for (const Cand& c : cand) {
-      if (matched[c.a] || matched[c.b]) continue;
-      matched[c.a] = matched[c.b] = 1;
-      acc.push_back(c);
-    }
+    return cand;
+  }
 
-    // which components flip: BFS over components from the largest, so that
-    // of two glued components the smaller one is flipped
+  // orient: a BFS over the glued components from the largest, so that of two
+  // glued components the smaller one flips; a pair that disagrees with the
+  // flips its group already chose is dropped (pair_ok 0)
+  Component_flips choose_component_flips(const std::vector<Side_pair>& pairs) const
+  {
     const std::size_t C = comp_faces.size();
-    std::vector<std::vector<std::pair<Idx, Idx>>> adj(C);  // (other component, pair id)
-    std::vector<unsigned char> ok(acc.size(), 1);
-    for (std::size_t i = 0; i < acc.size(); ++i) {
-      Idx ca = comp[acc[i].a / 3], cb = comp[acc[i].b / 3];
-      if (ca == cb) {
-        if (acc[i].same) ok[i] = 0;  // would need a Moebius twist
-        continue;
-      }
-      adj[ca].push_back({cb, Idx(i)});
-      adj[cb].push_back({ca, Idx(i)});
-    }
+    Component_flips f;
+    f.pair_ok.assign(pairs.size(), 1);
+    const std::vector<std::vector<std::pair<Idx, Idx>>> adj = glued_components(pairs, f.pair_ok);
     std::vector<Idx> corder(C);
     std::iota(corder.begin(), corder.end(), Idx(0));
     std::stable_sort(corder.begin(), corder.end(), [&](Idx x, Idx y) { return comp_faces[x] > comp_faces[y]; });
-    std::vector<unsigned char> cflip(C, 2);
+    f.flip.assign(C, 2);  // 2: not reached yet
     std::vector<Idx> queue;
     for (Idx root : corder) {
-      if (cflip[root] != 2) continue;
-      cflip[root] = 0;
+      if (f.flip[root] != 2) continue;
+      f.flip[root] = 0;
       queue.assign(1, root);
       for (std::size_t h = 0; h < queue.size(); ++h) {
         Idx c = queue[h];
         for (auto [o, pi] : adj[c]) {
-          unsigned char want = cflip[c] ^ (acc[pi].same ? 1 : 0);
-          if (cflip[o] == 2) {
-            cflip[o] = want;
+          unsigned char want = f.flip[c] ^ (pairs[pi].same ? 1 : 0);
+          if (f.flip[o] == 2) {
+            f.flip[o] = want;
             queue.push_back(o);
-          } else if (cflip[o] != want)
-            ok[pi] = 0;
+          } else if (f.flip[o] != want)
+            f.pair_ok[pi] = 0;
         }
       }
       // of the glued group, flip the side with fewer faces
       std::size_t flipped = 0, total = 0;
       for (Idx c : queue) {
         total += comp_faces[c];
-        if (cflip[c]) flipped += comp_faces[c];
+        if (f.flip[c]) flipped += comp_faces[c];
       }
       if (2 * flipped > total)
-        for (Idx c : queue) cflip[c] ^= 1;
+        for (Idx c : queue) f.flip[c] ^= 1;
     }
-    // vertex pairs to merge
-    std::vector<std::array<Idx, 4>> merges;  // a, a', b, b' ; pair id implicit by index
-    std::vector<std::size_t> merge_pair;
-    for (std::size_t i = 0; i < acc.size(); ++i) {
-      if (!ok[i]) continue;
-      const Idx a = acc[i].a, b = acc[i].b;
-      if (acc[i].same)
-        merges.push_back({src(a), src(b), dst(a), dst(b)});
-      else
-        merges.push_back({src(a), dst(b), dst(a), src(b)});
-      merge_pair.push_back(i);
-    }
-    // never merge two corners of one face: drop the merges that would, and
-    // retry; only the faces around merged vertices are looked at
-    std::vector<Idx> local(P.size(), none), verts;
-    for (const auto& mg : merges)
-      for (Idx v : mg)
-        if (local[v] == none) {
-          local[v] = Idx(verts.size());
-          verts.push_back(v);
-        }
-    std::vector<Idx> touched;
-    for (std::size_t t = 0; t < T.size(); ++t)
-      if (local[T[t][0]] != none || local[T[t][1]] != none || local[T[t][2]] != none) touched.push_back(Idx(t));
-    std::vector<unsigned char> live(merges.size(), 1);
-    std::vector<Idx> lroot(verts.size());
-    auto root_of = [&](Idx v) { return local[v] == none ? none - 1 - v : lroot[local[v]]; };  // unmerged: itself
-    for (int round = 0;; ++round) {
-      Union_find<Idx> uf(verts.size());
-      for (std::size_t i = 0; i < merges.size(); ++i)
-        if (live[i]) {
-          uf.unite(local[merges[i][0]], local[merges[i][1]]);
-          uf.unite(local[merges[i][2]], local[merges[i][3]]);
-        }
-      for (std::size_t k = 0; k < verts.size(); ++k) lroot[k] = uf.find(Idx(k));
-      std::vector<unsigned char> bad(verts.size(), 0);
-      bool any_bad = false;
-      for (Idx t : touched) {
-        const Idx x = root_of(T[t][0]), y = root_of(T[t][1]), z = root_of(T[t][2]);
-        if (x == y || y == z || x == z) {
-          any_bad = true;
-          bad[(x == y || x == z) ? x : y] = 1;  // a repeated root is always a merged vertex
-        }
+    return f;
+  }
+
+  // per component: (other component, pair id) for each pair that joins two
+  // components; a same-way pair within one component would need a Moebius
+  // twist and is dropped (pair_ok 0)
+  std::vector<std::vector<std::pair<Idx, Idx>>> glued_components(const std::vector<Side_pair>& pairs,
+                                                                 std::vector<unsigned char>& pair_ok) const
+  {
+    std::vector<std::vector<std::pair<Idx, Idx>>> adj(comp_faces.size());
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      Idx ca = comp[pairs[i].a / 3], cb = comp[pairs[i].b / 3];
+      if (ca == cb) {
+        if (pairs[i].same) pair_ok[i] = 0;
+        continue;
       }
-      if (!any_bad) break;
+      adj[ca].push_back({cb, Idx(i)});
+      adj[cb].push_back({ca, Idx(i)});
+    }
+    return adj;
+  }
+
+  // merge: the vertex pairs each agreeing side pair joins (source to target
+  // of the other side when they run opposite ways)
+  std::vector<Vertex_merge> vertex_merges(const std::vector<Side_pair>& pairs,
+                                          const std::vector<unsigned char>& pair_ok) const
+  {
+    std::vector<Vertex_merge> merges;
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      if (!pair_ok[i]) continue;
+      const Idx a = pairs[i].a, b = pairs[i].b;
+      if (pairs[i].same)
+        merges.push_back({{src(a), src(b), dst(a), dst(b)}, i});
+      else
+        merges.push_back({{src(a), dst(b), dst(a), src(b)}, i});
+    }
+    return merges;
+  }
+
+  // the vertices the merges name, numbered 0.. in order of appearance
+  // (local: per vertex, none when not named; verts: back), and the faces
+  // that touch them: only those can get two corners merged
+  struct Merge_scope
+  {
+    std::vector<Idx> local, verts, touched;
+  };
+  Merge_scope merge_scope(const std::vector<Vertex_merge>& merges) const
+  {
+    Merge_scope m;
+    m.local.assign(P.size(), none);
+    for (const Vertex_merge& mg : merges)
+      for (Idx v : mg.v)
+        if (m.local[v] == none) {
+          m.local[v] = Idx(m.verts.size());
+          m.verts.push_back(v);
+        }
+    for (std::size_t t = 0; t < T.size(); ++t)
+      if (m.local[T[t][0]] != none || m.local[T[t][1]] != none || m.local[T[t][2]] != none)
+        m.touched.push_back(Idx(t));
+    return m;
+  }
+
+  // never merge two corners of one face: the merges of a group that would
+  // are dropped and the rest retried; when nothing can be dropped, or after
+  // 18 rounds, none survives
+  Surviving_merges surviving_merges(const std::vector<Vertex_merge>& merges) const
+  {
+    const Merge_scope scope = merge_scope(merges);
+    const std::vector<Idx>& local = scope.local;
+    Surviving_merges kept;
+    kept.live.assign(merges.size(), 1);
+    std::vector<Idx> lroot(scope.verts.size());
+    for (int round = 0;; ++round) {
+      Union_find<Idx> uf(scope.verts.size());
+      for (std::size_t i = 0; i < merges.size(); ++i)
+        if (kept.live[i]) {
+          uf.unite(local[merges[i].v[0]], local[merges[i].v[1]]);
+          uf.unite(local[merges[i].v[2]], local[merges[i].v[3]]);
+        }
+      for (std::size_t k = 0; k < scope.verts.size(); ++k) lroot[k] = uf.find(Idx(k));
+      std::vector<unsigned char> bad(scope.verts.size(), 0);
+      if (!mark_folded_groups(scope, lroot, bad)) break;
       bool changed = false;
       for (std::size_t i = 0; i < merges.size(); ++i)
-        if (live[i] && (bad[lroot[local[merges[i][0]]]] || bad[lroot[local[merges[i][2]]]])) {
-          live[i] = 0;
+        if (kept.live[i] && (bad[lroot[local[merges[i].v[0]]]] || bad[lroot[local[merges[i].v[2]]]])) {
+          kept.live[i] = 0;
           changed = true;
         }
       if (!changed || round > 16) {
-        std::fill(live.begin(), live.end(), 0);
-        for (std::size_t k = 0; k < verts.size(); ++k) lroot[k] = Idx(k);
-        break;
+        std::fill(kept.live.begin(), kept.live.end(), 0);
+        return kept;
       }
     }
-    std::vector<Idx> root(P.size());
-    for (std::size_t v = 0; v < P.size(); ++v) root[v] = local[v] == none ? Idx(v) : verts[lroot[local[v]]];
-    bool any = false;
-    for (unsigned char l : live) any = any || l;
-    if (!any) return false;
-    // flip the components of the surviving pairs, then merge
-    std::vector<unsigned char> flip(T.size(), 0);
-    std::vector<unsigned char> comp_used(C, 0);
+    kept.any = std::find(kept.live.begin(), kept.live.end(), 1) != kept.live.end();
+    if (!kept.any) return kept;
+    kept.root.resize(P.size());
+    for (std::size_t v = 0; v < P.size(); ++v)
+      kept.root[v] = local[v] == none ? Idx(v) : scope.verts[lroot[local[v]]];
+    return kept;
+  }
+
+  // marks in `bad` (by local root) each merged group that would hold two
+  // corners of a touched face; false when there is none
+  bool mark_folded_groups(const Merge_scope& scope, const std::vector<Idx>& lroot,
+                          std::vector<unsigned char>& bad) const
+  {
+    auto root_of = [&](Idx v) {  // unmerged: itself, apart from every local root
+      return scope.local[v] == none ? none - 1 - v : lroot[scope.local[v]];
+    };
+    bool any_bad = false;
+    for (Idx t : scope.touched) {
+      const Idx x = root_of(T[t][0]), y = root_of(T[t][1]), z = root_of(T[t][2]);
+      if (x == y || y == z || x == z) {
+        any_bad = true;
+        bad[(x == y || x == z) ? x : y] = 1;  // a repeated root is always a merged vertex
+      }
+    }
+    return any_bad;
+  }
+
+  // apply: the components a surviving merge glues get the flip chosen for
+  // them; returns how many flip
+  std::size_t flip_glued_components(const std::vector<Side_pair>& pairs, const std::vector<Vertex_merge>& merges,
+                                    const std::vector<unsigned char>& live,
+                                    const std::vector<unsigned char>& comp_flip)
+  {
+    std::vector<unsigned char> comp_used(comp_faces.size(), 0);
     for (std::size_t i = 0; i < merges.size(); ++i)
       if (live[i]) {
-        comp_used[comp[acc[merge_pair[i]].a / 3]] = 1;
-        comp_used[comp[acc[merge_pair[i]].b / 3]] = 1;
+        comp_used[comp[pairs[merges[i].pair].a / 3]] = 1;
+        comp_used[comp[pairs[merges[i].pair].b / 3]] = 1;
       }
-    for (std::size_t c = 0; c < C; ++c)
-      if (comp_used[c] && cflip[c] == 1) ++r.components_flipped;
-    for (std::size_t t = 0; t < T.size(); ++t) flip[t] = comp_used[comp[t]] && cflip[comp[t]] == 1;
+    std::size_t flipped = 0;
+    for (std::size_t c = 0; c < comp_used.size(); ++c)
+      if (comp_used[c] && comp_flip[c] == 1) ++flipped;
+    std::vector<unsigned char> flip(T.size(), 0);
+    for (std::size_t t = 0; t < T.size(); ++t) flip[t] = comp_used[comp[t]] && comp_flip[comp[t]] == 1;
     apply_flips(flip);
-    for (auto& t : T)
-      for (Idx& v : t) v = root[v];
-    return true;
+    return flipped;
   }
 
   // ---------------------------------------------------------------- outward
@@ -1133,7 +1250,9 @@ public:
       if (stale) orient();
       stale = false;
       const std::size_t before = count_boundary();
-      if (stitch(opt.snap_epsilon)) {
+      const Stitch_outcome stitched = stitch(opt.snap_epsilon);
+      r.components_flipped += stitched.components_flipped;
+      if (stitched.merged) {
         pair_edges();
         orient();
         stale = split_vertices(complex_flag);
