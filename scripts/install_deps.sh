@@ -6,7 +6,9 @@ packages=(cmake g++ make debian-archive-keyring libcgal-dev libeigen3-dev libtbb
           # the Python package (pybind11) and its tests; venv, setuptools and
           # wheel for `pip install --no-build-isolation .`
           pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest
-          python3-venv python3-setuptools python3-wheel)
+          python3-venv python3-setuptools python3-wheel
+          # `mrepair.batch` on a Dask cluster (python3-dask comes with it) and its test
+          python3-distributed python3-dask)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

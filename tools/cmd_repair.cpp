@@ -4,6 +4,7 @@
 // closing, cleaning by input profile, validity, inspections, face
 // accounting), print as it goes, write.
 #include "cli.h"
+#include "repair_options.h"
 
 #include <mrepair/input_profile.h>
 #include <mrepair/inspection_report.h>
@@ -28,27 +29,6 @@ using K = CGAL::Epick;
 using Mesh = CGAL::Surface_mesh<K::Point_3>;
 namespace cli = mrepair::cli;
 
-const std::vector<cli::Option>& repair_options()
-{
-  static const std::vector<cli::Option> o = {
-      {"profile", true, "auto|scan|cad: which cleaning steps apply (auto: decided from the mesh)"},
-      {"close-gaps", true,
-       "close boundary gaps narrower than T (model units; 0: off; default: a tolerance derived from "
-       "the input on CAD exports and print models, none on scans)"},
-      {"merge-epsilon", true, "merge soup points closer than E before stitching (0)"},
-      {"spike-angle", true, "dihedral angle (degrees) of a spiked vertex (relax_spikes default)"},
-      {"max-hole", true, "holes with fewer boundary vertices are filled (100 scan, 500 cad)"},
-      {"min-component", true, "components with fewer faces are removed (400)"},
-      {"iterations", true, "cleaning iteration cap (5)"},
-      {"no-self-intersections", false, "do not count self-intersections in the inspection of the output"},
-      {"input-self-intersections", false,
-       "count self-intersections in the inspection of the input too (off: 1.9 s of a 6.8 s job at 1M faces)"},
-      {"keep-shells-separate", false, "do not merge overlapping closed shells into their union"},
-      {"no-resolve-intersections", false, "leave crossings as the cleaning left them (no solid repair)"},
-      {"binary", false, "write a binary file (PLY, STL)"}};
-  return o;
-}
-
 void print_inspection(const char* title, const mrepair::Inspection_report& i, bool quiet)
 {
   if (quiet) return;
@@ -72,28 +52,18 @@ void print_inspection(const char* title, const mrepair::Inspection_report& i, bo
 int run_repair(int argc, char** argv)
 {
   static const cli::Command self{"repair", "INPUT OUTPUT [options]", "", nullptr};
-  cli::Arguments a = cli::parse(argc, argv, 1, repair_options(), 2, 2);
+  cli::Arguments a = cli::parse(argc, argv, 1, cli::repair_options(), 2, 2);
   if (a.has("help")) {
-    cli::print_help(self, repair_options());
+    cli::print_help(self, cli::repair_options());
     return 0;
   }
   // Each option goes to the library as given or absent: the defaults are the
   // library's (definitions.h), and without --max-hole the profile picks the limit.
-  const std::optional<double> gap = a.optional_double("close-gaps"),
-                              merge = a.optional_double("merge-epsilon"),
-                              spike = a.optional_double("spike-angle");
-  if (gap.value_or(0.) < 0. || merge.value_or(0.) < 0.)
-    throw cli::Usage_error("--close-gaps and --merge-epsilon must be >= 0");
-  const std::optional<std::size_t> max_hole = a.optional_count("max-hole", 1),
-                                   min_comp = a.optional_count("min-component", 1),
-                                   iterations = a.optional_count("iterations", 0);
-  std::optional<mrepair::Input_profile> profile;
-  if (a.has("profile")) {
-    mrepair::Input_profile p;
-    if (!mrepair::parse_input_profile(a.get("profile"), p))
-      throw cli::Usage_error("--profile must be auto, scan or cad");
-    profile = p;
-  }
+  const cli::Repair_option_values v = cli::parse_repair_options(a);
+  const std::optional<double>& gap = v.gap, &merge = v.merge, &spike = v.spike;
+  const std::optional<std::size_t>& max_hole = v.max_hole, &min_comp = v.min_component,
+                                    &iterations = v.iterations;
+  const std::optional<mrepair::Input_profile>& profile = v.profile;
   const bool quiet = a.has("quiet") || a.has("json");
   cli::Progress_printer printer(!quiet);
   // Memory: the input inspection and the soup stage allocate and free
