@@ -699,6 +699,24 @@ int run_batch(int argc, char** argv)
   };
 
   while ((next < todo.size() && !interrupted) || !running.empty()) {
+    // reap every finished child (before starting others: their slots are free)
+    while (true) {
+      int wstatus = 0;
+      struct rusage ru;
+      const pid_t pid = ::wait4(-1, &wstatus, WNOHANG, &ru);
+      if (pid <= 0) break;
+      auto it = std::find_if(running.begin(), running.end(), [&](const Job& j) { return j.pid == pid; });
+      if (it == running.end()) continue;
+      ::kill(-pid, SIGKILL);  // anything the repair left in its group
+      if (!interrupted || WIFEXITED(wstatus)) finish(*it, wstatus, ru);
+      else {
+        std::error_code e;
+        fs::remove(it->partial, e);
+      }
+      slots.push_back(slot_of[pid]);
+      slot_of.erase(pid);
+      running.erase(it);
+    }
     while (!interrupted && running.size() < jobs && next < todo.size()) {
       Job job;
       job.file = todo[next++];
@@ -719,8 +737,9 @@ int run_batch(int argc, char** argv)
       if (job.pid < 0) {
         Record r;
         r.path = f.rel;
-        r.status = "write_error";
-        r.message = e ? "cannot create '" + job.output.parent_path().string() + "': " + e.message() : error;
+        r.status = e ? "write_error" : "crashed";
+        r.message = e ? "cannot create '" + job.output.parent_path().string() + "': " + e.message()
+                      : "cannot start the repair: " + error;
         manifest.append(r);
         latest[r.path] = r.status;
         ++failed;
@@ -730,24 +749,6 @@ int run_batch(int argc, char** argv)
       }
       slot_of[job.pid] = slot;
       running.push_back(std::move(job));
-    }
-    // reap every finished child
-    while (true) {
-      int wstatus = 0;
-      struct rusage ru;
-      const pid_t pid = ::wait4(-1, &wstatus, WNOHANG, &ru);
-      if (pid <= 0) break;
-      auto it = std::find_if(running.begin(), running.end(), [&](const Job& j) { return j.pid == pid; });
-      if (it == running.end()) continue;
-      ::kill(-pid, SIGKILL);  // anything the repair left in its group
-      if (!interrupted || WIFEXITED(wstatus)) finish(*it, wstatus, ru);
-      else {
-        std::error_code e;
-        fs::remove(it->partial, e);
-      }
-      slots.push_back(slot_of[pid]);
-      slot_of.erase(pid);
-      running.erase(it);
     }
     progress.update(records.size(), failed, bytes_done, running.size(), false);
     if (running.empty()) continue;
