@@ -821,6 +821,7 @@ int run_batch(int argc, char** argv)
     std::cout << "batch: " << files.size() << " files, " << counts["ok"] << " ok, " << counts["partial"]
               << " partial, " << not_repaired << " not repaired";
     if (skipped) std::cout << " (" << skipped << " done before)";
+    if (records.size() < todo.size()) std::cout << ", " << todo.size() - records.size() << " left to do";
     std::cout << "; " << records.size() << " repaired in " << fixed(total_seconds, 1) << " s with " << jobs
               << " job" << (jobs > 1 ? "s" : "") << "\n";
     for (const Status_info& s : kStatuses)
