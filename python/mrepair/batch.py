@@ -83,7 +83,8 @@ def find_meshes(paths, out_dir=None):
         rels = []
         for d, dirs, names in os.walk(root):
             dirs[:] = [x for x in dirs if skip is None or (Path(d) / x).resolve() != skip]
-            rels += [(Path(d) / n).relative_to(root).as_posix() for n in names if _is_mesh(n)]
+            rels += [(Path(d) / n).relative_to(root).as_posix() for n in names
+                     if _is_mesh(n) and os.path.isfile(os.path.join(d, n))]
         return root, sorted(rels)
     files = [Path(p).absolute() for p in paths]
     if not files:
