@@ -223,3 +223,27 @@ def test_manifest_to_stdout(dataset, tmp_path):
     r = batch(dataset, tmp_path / "out", "--file", "sub/scan2.off", "--manifest", "-", check=0)
     lines = [json.loads(l) for l in r.stdout.splitlines()]
     assert len(lines) == 1 and lines[0]["path"] == "sub/scan2.off" and list(lines[0]) == KEYS
+
+
+def test_sigterm_stops_cleanly(tmp_path):
+    """SIGTERM (or Ctrl-C) kills the repairs in flight, removes their temporary
+    outputs, records nothing for them and exits 128 + 15."""
+    src, out = tmp_path / "in", tmp_path / "out"
+    for i in range(6):
+        generate(src / f"m{i}.ply", "scan", 60000 + 1000 * i, 30 + i)
+    p = subprocess.Popen([CLI, "batch", src, out, "--jobs", "2"], stdout=subprocess.PIPE,
+                         stderr=subprocess.DEVNULL, text=True)
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and p.poll() is None:
+        if (out / "manifest.jsonl").exists() and (out / "manifest.jsonl").read_text().strip():
+            break
+        time.sleep(0.01)
+    p.send_signal(signal.SIGTERM)
+    stdout, _ = p.communicate(timeout=30)
+    assert p.returncode == 128 + signal.SIGTERM, stdout
+    assert "interrupted by SIGTERM" in stdout and "left to do" in stdout
+    lines = manifest_lines(out / "manifest.jsonl")
+    assert 1 <= len(lines) < 6 and all(l["status"] in ("ok", "partial") for l in lines)
+    assert sorted(p.name for p in out.glob("*.ply")) == sorted(l["path"] for l in lines)
+    assert not [p for p in out.rglob("*") if "mrepair-partial" in p.name]
+    assert not [c for c in command_lines() if str(out) in c]
