@@ -116,15 +116,36 @@ bool is_mesh_file(const fs::path& p)
 }
 
 /// the temporary name of an output while its repair runs: hidden, the same
-/// extension (the writer picks the format by it).
+/// extension (the writer picks the format by it), and the host and process
+/// of the batch, so that two runs on one file (a Dask task tried again while
+/// the first attempt still runs) never write into one file.
 fs::path partial_name(const fs::path& out)
 {
-  return out.parent_path() / ("." + out.stem().string() + ".mrepair-partial" + out.extension().string());
+  char host[256] = {0};
+  if (::gethostname(host, sizeof host - 1) != 0) host[0] = 0;
+  return out.parent_path() / ("." + out.stem().string() + ".mrepair-partial-" + host + "-" +
+                              std::to_string(::getpid()) + out.extension().string());
 }
 
 bool is_partial_name(const fs::path& p)
 {
   return p.filename().string().find(".mrepair-partial") != std::string::npos;
+}
+
+/// removes the temporary outputs a killed batch left under `out_dir`; returns
+/// how many.
+std::size_t remove_stale_partials(const fs::path& out_dir)
+{
+  std::size_t n = 0;
+  std::error_code ec;
+  fs::recursive_directory_iterator it(out_dir, fs::directory_options::skip_permission_denied, ec), end;
+  for (; !ec && it != end; it.increment(ec)) {
+    std::error_code e2;
+    if (it->is_regular_file(e2) && is_partial_name(it->path()) && is_mesh_file(it->path()) &&
+        fs::remove(it->path(), e2))
+      ++n;
+  }
+  return n;
 }
 
 struct Input_file
@@ -623,6 +644,14 @@ int run_batch(int argc, char** argv)
   manifest.open(manifest_path);
   if (manifest.unreadable_lines)
     std::cerr << "mrepair batch: " << manifest.unreadable_lines << " unreadable line(s) in the manifest ignored\n";
+
+  // the temporary outputs of a batch that was killed (the manifest lock says
+  // that no other batch of this manifest runs; with --file, mrepair.batch
+  // does this under its own lock)
+  if (manifest_path != "-" && !a.has("file")) {
+    const std::size_t stale = remove_stale_partials(out_dir);
+    if (stale && !quiet) std::cerr << "mrepair batch: removed " << stale << " temporary output(s) of an earlier run\n";
+  }
 
   // resume: a file whose last line says done is skipped, when its output exists
   std::vector<std::size_t> todo;

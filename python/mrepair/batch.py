@@ -246,6 +246,14 @@ def repair_dataset(paths, out_dir, client=None, *, manifest=None, workers=None, 
             fcntl.flock(mf, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:
             raise RuntimeError(f"the manifest '{manifest}' is in use by another batch") from None
+        # the temporary outputs of a run that was killed (no other run of this manifest is going on)
+        for d, _, names in os.walk(out_dir):
+            for n in names:
+                if ".mrepair-partial" in n and n.lower().endswith(MESH_EXTENSIONS):
+                    try:
+                        os.remove(os.path.join(d, n))
+                    except OSError:
+                        pass
         last = read_manifest(manifest)
         latest = {}
         todo = []
