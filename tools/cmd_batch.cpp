@@ -679,7 +679,9 @@ int run_batch(int argc, char** argv)
               << " files already done (manifest), " << todo.size() << " to repair\n";
 
   // private folder of the children's reports and messages
-  std::string tmpl = (fs::temp_directory_path(ec) / "mrepair-batch.XXXXXX").string();
+  fs::path tmp_root = fs::temp_directory_path(ec);
+  if (ec || tmp_root.empty()) tmp_root = "/tmp";
+  std::string tmpl = (tmp_root / "mrepair-batch.XXXXXX").string();
   if (!::mkdtemp(&tmpl[0])) return cli::fail(std::string("cannot create a temporary folder: ") + std::strerror(errno));
   const fs::path tmp_dir = tmpl;
 

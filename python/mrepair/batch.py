@@ -18,8 +18,8 @@ or runs out of memory therefore fails alone and never takes a Dask worker
 down; the outputs, the manifest format and the resume rule are those of
 ``mrepair batch`` by construction.
 
-Workers need the ``mrepair`` program (``MREPAIR_CLI``, else ``PATH``, else the
-one this driver found, when the same path exists there) and the input and
+Workers need the ``mrepair`` program (the one this driver found, when the
+same path exists there, else ``MREPAIR_CLI``, else on ``PATH``) and the input and
 output folders at the same paths (a shared file system). They do not need
 this package: the task is sent by value.
 """
