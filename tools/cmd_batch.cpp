@@ -148,6 +148,25 @@ std::size_t remove_stale_partials(const fs::path& out_dir)
   return n;
 }
 
+/// removes the private folders (`mrepair-batch.PID.XXXXXX`) of batches that
+/// were killed: those whose process no longer exists.
+void remove_dead_temporary_folders(const fs::path& tmp_root)
+{
+  std::error_code ec;
+  for (fs::directory_iterator it(tmp_root, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const std::string prefix = "mrepair-batch.";
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::size_t dot = name.find('.', prefix.size());
+    if (dot == std::string::npos) continue;
+    const std::string pid = name.substr(prefix.size(), dot - prefix.size());
+    if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
+    std::error_code e2;
+    if (::kill(static_cast<pid_t>(std::stol(pid)), 0) != 0 && errno == ESRCH && it->is_directory(e2))
+      fs::remove_all(it->path(), e2);
+  }
+}
+
 struct Input_file
 {
   std::string rel;  // relative to IN_DIR, '/'-separated
@@ -681,7 +700,8 @@ int run_batch(int argc, char** argv)
   // private folder of the children's reports and messages
   fs::path tmp_root = fs::temp_directory_path(ec);
   if (ec || tmp_root.empty()) tmp_root = "/tmp";
-  std::string tmpl = (tmp_root / "mrepair-batch.XXXXXX").string();
+  remove_dead_temporary_folders(tmp_root);
+  std::string tmpl = (tmp_root / ("mrepair-batch." + std::to_string(::getpid()) + ".XXXXXX")).string();
   if (!::mkdtemp(&tmpl[0])) return cli::fail(std::string("cannot create a temporary folder: ") + std::strerror(errno));
   const fs::path tmp_dir = tmpl;
 

@@ -170,8 +170,11 @@ def test_kill_in_the_middle_and_resume(tmp_path):
     # the repair in flight died with the batch (PR_SET_PDEATHSIG)
     time.sleep(0.5)
     assert not [c for c in command_lines() if str(out) in c]
-    # a temporary output a killed run left (here made by hand) is removed by the next run
+    # a temporary output a killed run left (here made by hand) is removed by the next run,
+    # and so is the private folder of the killed batch
     (out / ".m7.mrepair-partial-elsewhere-1.ply").write_bytes(b"ply\n")
+    tmp = Path(os.environ.get("TMPDIR", "/tmp"))
+    assert list(tmp.glob(f"mrepair-batch.{p.pid}.*"))
     r = batch(src, out, "--jobs", 2, "--quiet", "--json", check=0)
     summary = json.loads(r.stdout)
     assert summary["skipped_as_done"] == len(first) and summary["repaired_now"] == 8 - len(first)
@@ -181,6 +184,7 @@ def test_kill_in_the_middle_and_resume(tmp_path):
     assert final[: len(first)] == first
     assert all(l["status"] in ("ok", "partial") for l in final)
     assert not [p for p in out.rglob("*") if "mrepair-partial" in p.name]
+    assert not list(tmp.glob(f"mrepair-batch.{p.pid}.*"))
 
 
 def test_memory_limit(dataset, tmp_path):
