@@ -171,10 +171,10 @@ def test_kill_in_the_middle_and_resume(tmp_path):
     time.sleep(0.5)
     assert not [c for c in command_lines() if str(out) in c]
     # a temporary output a killed run left (here made by hand) is removed by the next run,
-    # and so is the private folder of the killed batch
+    # and so is the private folder of the killed batch (by any batch that starts
+    # after it: one of another test may have been first)
     (out / ".m7.mrepair-partial-elsewhere-1.ply").write_bytes(b"ply\n")
     tmp = Path(os.environ.get("TMPDIR", "/tmp"))
-    assert list(tmp.glob(f"mrepair-batch.{p.pid}.*"))
     r = batch(src, out, "--jobs", 2, "--quiet", "--json", check=0)
     summary = json.loads(r.stdout)
     assert summary["skipped_as_done"] == len(first) and summary["repaired_now"] == 8 - len(first)
