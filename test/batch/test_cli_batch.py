@@ -90,9 +90,10 @@ def test_statuses_and_manifest(dataset, first_run):
     lines = manifest_lines(out / "manifest.jsonl")
     by_path = {l["path"]: l for l in lines}
     assert len(lines) == len(by_path) == 7  # one line per mesh file, notes.txt left out
-    # the largest file starts first and the small ones all finish in the other
-    # slot while it runs (a slot is refilled as soon as its child ends)
-    assert lines[-1]["path"] == "huge.ply"
+    # the largest file starts first and the small ones go through the other
+    # slot while it runs (a slot is refilled as soon as its child ends; a slot
+    # left idle until the next child ends would let one small file through)
+    assert [l["path"] for l in lines].index("huge.ply") >= 3
     for l in lines:
         assert list(l) == KEYS
     assert by_path["broken.off"]["status"] == "unreadable"
