@@ -23,7 +23,7 @@ pytestmark = pytest.mark.skipif(not (CLI and GEN and Path(CLI).exists() and Path
 
 KEYS = ["path", "status", "message", "seconds", "cpu_seconds", "peak_memory_mb", "exit_code", "signal",
         "faces_in", "faces_out", "defects_before", "defects_after", "face_accounting"]
-TIMEOUT = "2.5"  # the 1M-face scan takes about 9 s; the small files 0.05 s
+TIMEOUT = "1.5"  # the 1M-face scan takes about 9 s here (8.8 s), a small file 0.05 s
 
 
 def generate(path, mode, faces, seed, *extra):
@@ -100,7 +100,7 @@ def test_statuses_and_manifest(dataset, first_run):
     assert by_path["broken.off"]["exit_code"] == 1 and by_path["broken.off"]["message"]
     assert by_path["huge.ply"]["status"] == "timeout"
     assert by_path["huge.ply"]["signal"] == "SIGKILL" and by_path["huge.ply"]["exit_code"] is None
-    assert 2.4 < by_path["huge.ply"]["seconds"] < 30
+    assert 1.4 < by_path["huge.ply"]["seconds"] < 30
     for p in ["scan1.ply", "sub/scan2.off", "sub/deeper/part1.stl", "part2.obj", "sub/scan3.stl"]:
         l = by_path[p]
         assert l["status"] in ("ok", "partial"), l
