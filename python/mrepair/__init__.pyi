@@ -61,6 +61,7 @@ def locate_defects(
     small_component: Optional[int] = None,
     t_junction_tolerance: Optional[float] = None,
     self_intersections: bool = True,
+    mesh: bool = False,
 ) -> Dict[str, DefectKind]:
     """where the defects that `inspect` counts are (doc/studio.md).
 
@@ -70,7 +71,9 @@ def locate_defects(
     Boundary loops are vertex walks (-1 ends each open walk of a loop that is not
     one closed walk); small_holes has "loops" and "indices" (into boundary_loops),
     small_components "faces" and "components", crossing_pairs "pairs", "touching"
-    and "computed", t_junctions "vertices" and the "edges" they lie on."""
+    and "computed", t_junctions "vertices" and the "edges" they lie on.
+    mesh=True inspects the faces as a polygon mesh (as mrepair.repair's "after"
+    inspection: boundary loops are border cycles); ValueError if they are not one."""
 
 def defect_overlay(
     V: Vertices,
@@ -81,6 +84,7 @@ def defect_overlay(
     small_component: Optional[int] = None,
     t_junction_tolerance: Optional[float] = None,
     self_intersections: bool = True,
+    mesh: bool = False,
     max_elements: int = 100000,
 ) -> Dict[str, Dict[str, Dict[str, Any]]]:
     """the defects as geometry: {"kinds": {kind: {"count", "label", "color",

@@ -117,10 +117,14 @@ struct Inspect_options
   std::optional<long long> small_hole, small_component;
   std::optional<double> t_junction_tolerance;
   bool self_intersections = true;
+  bool mesh = false;
 };
 
-// the defects of the soup (V, F), as mrepair.inspect counts them in "defects"
-Defect_locations locate(const Soup& s, const Inspect_options& o)
+// the defects of the soup (V, F), as mrepair.inspect counts them in "defects";
+// with `o.mesh`, of the polygon mesh the faces form (inspect(mesh), as the
+// "after" inspection of mrepair.repair), the elements numbered as in (V, F).
+// `faces` (when given) gets the positions and faces the indices refer to.
+Defect_locations locate(const Soup& s, const Inspect_options& o, internal::Indexed_faces* faces = nullptr)
 {
   if (o.spike_angle && !(*o.spike_angle >= 0 && *o.spike_angle <= 180))
     raise_value_error("spike_angle expects degrees in [0, 180]");
@@ -129,15 +133,24 @@ Defect_locations locate(const Soup& s, const Inspect_options& o)
   const double tol = o.t_junction_tolerance ? *o.t_junction_tolerance : -1.;
   if (o.t_junction_tolerance && !(tol >= 0 && std::isfinite(tol)))
     raise_value_error("t_junction_tolerance expects a non-negative distance");
-  Defect_locations d = without_gil([&] {
-    return locate_defects(
-        s.points, s.polygons,
-        MP::spike_angle(o.spike_angle,
-                        MP::max_hole_vertices(
-                            o.small_hole,
+  const auto np = MP::spike_angle(
+      o.spike_angle,
+      MP::max_hole_vertices(o.small_hole,
                             MP::min_component_faces(o.small_component,
                                                     MP::t_junction_tolerance(
-                                                        tol, MP::count_self_intersections(o.self_intersections))))));
+                                                        tol, MP::count_self_intersections(o.self_intersections)))));
+  if (o.mesh && !is_polygon_soup_a_polygon_mesh(s.polygons, s.points.size()))
+    raise_value_error("mesh=True: the faces do not form a manifold, consistently oriented polygon mesh");
+  Defect_locations d = without_gil([&] {
+    if (!o.mesh) {
+      if (faces) *faces = internal::indexed_faces_of_soup(s.points, s.polygons);
+      return locate_defects(s.points, s.polygons, np);
+    }
+    // polygon_soup_to_polygon_mesh adds the points, then the faces, in order
+    Mesh mesh;
+    CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(s.points, s.polygons, mesh);
+    if (faces) *faces = internal::indexed_faces_of_mesh(mesh);
+    return locate_defects(mesh, np);
   });
   if (d.report.status == Status::invalid_parameter) raise_value_error(status_line(d.report.status, d.report.message));
   return d;
@@ -172,11 +185,11 @@ py::list array_list(const std::vector<std::vector<Defect_locations::Index>>& v)
 py::dict locate_defects_py(const py::object& vertices, const py::object& faces,
                            const std::optional<double>& spike_angle, const std::optional<long long>& small_hole,
                            const std::optional<long long>& small_component,
-                           const std::optional<double>& t_junction_tolerance, bool self_intersections)
+                           const std::optional<double>& t_junction_tolerance, bool self_intersections, bool mesh)
 {
   const Soup s = soup_from(vertices, faces);
   const Defect_locations d =
-      locate(s, {spike_angle, small_hole, small_component, t_junction_tolerance, self_intersections});
+      locate(s, {spike_angle, small_hole, small_component, t_junction_tolerance, self_intersections, mesh});
   const Inspection_report& r = d.report;
   auto kind = [](std::size_t count) {
     py::dict k;
@@ -237,16 +250,15 @@ py::dict defect_overlay_py(const py::object& vertices, const py::object& faces,
                            const std::optional<double>& spike_angle, const std::optional<long long>& small_hole,
                            const std::optional<long long>& small_component,
                            const std::optional<double>& t_junction_tolerance, bool self_intersections,
-                           long long max_elements)
+                           bool mesh, long long max_elements)
 {
   if (max_elements < 0) raise_value_error("max_elements must not be negative");
   const Soup s = soup_from(vertices, faces);
+  internal::Indexed_faces drawn;
   const Defect_locations d =
-      locate(s, {spike_angle, small_hole, small_component, t_junction_tolerance, self_intersections});
-  const internal::Defect_overlay o = without_gil([&] {
-    return internal::make_defect_overlay(internal::indexed_faces_of_soup(s.points, s.polygons), d,
-                                         static_cast<std::size_t>(max_elements));
-  });
+      locate(s, {spike_angle, small_hole, small_component, t_junction_tolerance, self_intersections, mesh}, &drawn);
+  const internal::Defect_overlay o = without_gil(
+      [&] { return internal::make_defect_overlay(drawn, d, static_cast<std::size_t>(max_elements)); });
   py::dict kinds;
   for (const internal::Overlay_kind& k : o.kinds) {
     py::dict x;
@@ -484,7 +496,7 @@ progress: None or progress(phase, fraction); returning False cancels
 
   m.def("locate_defects", &mp::locate_defects_py, "V"_a, "F"_a, py::kw_only(), "spike_angle"_a = py::none(),
         "small_hole"_a = py::none(), "small_component"_a = py::none(), "t_junction_tolerance"_a = py::none(),
-        "self_intersections"_a = true,
+        "self_intersections"_a = true, "mesh"_a = false,
         R"doc(Returns where the defects that mrepair.inspect counts are, a dict.
 
 One entry per kind (doc/studio.md): boundary_loops, small_holes,
@@ -498,11 +510,14 @@ small_holes also has "indices" (into boundary_loops' loops),
 small_components "components" (one face array each), crossing_pairs
 "touching" (bool per pair: only touching at coincident vertices) and
 "computed" (False when self-intersections were not counted).
-Options as in mrepair.inspect.)doc");
+Options as in mrepair.inspect; mesh=True inspects the faces as a polygon
+mesh (as the "after" inspection of mrepair.repair: boundary loops are the
+border cycles), a ValueError when they do not form one; the indices are
+those of (V, F) all the same.)doc");
 
   m.def("defect_overlay", &mp::defect_overlay_py, "V"_a, "F"_a, py::kw_only(), "spike_angle"_a = py::none(),
         "small_hole"_a = py::none(), "small_component"_a = py::none(), "t_junction_tolerance"_a = py::none(),
-        "self_intersections"_a = true, "max_elements"_a = 100000,
+        "self_intersections"_a = true, "mesh"_a = false, "max_elements"_a = 100000,
         R"doc(Returns the defects as geometry to draw: {"kinds": {kind: dict}}.
 
 Per kind, in the order of mrepair.locate_defects: count, label, color

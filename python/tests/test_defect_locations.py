@@ -171,6 +171,30 @@ def test_small_components_and_thresholds():
     assert check(V, F, small_component=1)["small_components"]["count"] == 0
 
 
+def test_mesh_view():
+    V, F = grid(6, 6)
+    F = np.delete(F, [14, 15, 40], axis=0)  # two holes
+    V[24, 2] = 3.0  # and a spike
+    report = mrepair.inspect(V, F)
+    loc = mrepair.locate_defects(V, F, mesh=True)
+    assert loc["boundary_loops"]["count"] == report["mesh"]["boundary_loops"] == 3
+    assert loc["small_holes"]["count"] == report["mesh"]["small_holes"]
+    for kind in ("spikes", "near_degenerate_faces", "non_manifold_vertices", "crossing_pairs"):
+        assert loc[kind]["count"] == report["defects"][REPORT_KEY[kind]]
+    ef = edge_faces(F)
+    for loop in loc["boundary_loops"]["loops"]:
+        w = loop.tolist()
+        assert all(ef[tuple(sorted(e))] == 1 for e in zip(w, w[1:] + w[:1]))
+    o = mrepair.defect_overlay(V, F, mesh=True)
+    assert len(o["kinds"]["boundary_loops"]["segments"]) == report["defects"]["boundary_edges"]
+    assert np.allclose(o["kinds"]["spikes"]["points"], V[loc["spikes"]["vertices"]])
+    # a bowtie is no polygon mesh
+    bow = np.array([(0, 0, 0), (1, 0, 0), (1, 1, 0), (-1, 0, 0), (-1, -1, 0)], dtype=float)
+    with pytest.raises(ValueError):
+        mrepair.locate_defects(bow, [(0, 1, 2), (0, 3, 4)], mesh=True)
+    assert mrepair.locate_defects(bow, [(0, 1, 2), (0, 3, 4)])["non_manifold_vertices"]["count"] == 1
+
+
 @needs_generate
 @pytest.mark.parametrize("args", [
     ["scan", "--faces", "20000", "--seed", "3", "--spikes", "6", "--holes", "3", "--jagged-holes", "2",
