@@ -30,12 +30,14 @@ from ._mrepair import (  # noqa: F401
     soup_to_manifold,
     write,
 )
+from ._html_report import html_report  # noqa: F401
 
 __all__ = [
     "Cancelled",
     "GapClosingSequence",
     "clean",
     "close_gaps",
+    "html_report",
     "inspect",
     "progress_bar",
     "read",

@@ -103,8 +103,8 @@ const slider = $('gap-slider');
 let gapQueue = null, gapRunning = false;
 function gapStatus(g) {
   studio.gap = g;
-  $('gap-status').textContent = `step ${fmt(g.position)} of ${fmt(g.size)}, distance ` +
-    `${g.current_distance.toPrecision(4)} (max ${g.max_distance.toPrecision(4)}), ${fmt(g.faces)} faces`;
+  $('gap-status').textContent = `${fmt(g.position)} contractions (${fmt(g.size)} found so far), ` +
+    `closing distance ${g.current_distance.toPrecision(4)} of ${g.max_distance.toPrecision(4)}, ${fmt(g.faces)} faces`;
 }
 // moves the sequence; the latest request wins while one is running
 function gapMove(move) {
@@ -145,7 +145,7 @@ $('gap-form').addEventListener('submit', (e) => {
     showReports();
     viewer.setDefects('after', null);
     viewer.setMesh('after', await getMesh('after'));
-    status(`gap-closing sequence: ${fmt(g.size)} contractions up to distance ${g.max_distance.toPrecision(4)}`);
+    status(`gap-closing sequence up to distance ${g.max_distance.toPrecision(4)}: move the slider`);
   });
 });
 slider.addEventListener('input', () => gapMove({ distance: Number(slider.value) }));
