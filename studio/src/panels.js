@@ -91,7 +91,13 @@ export function viewControls(viewer, bar, labels, notes) {
     wire.textContent = viewer.wireframe ? 'flat (W)' : 'wireframe (W)';
     layout.textContent = viewer.layout === 'split' ? 'single (S)' : 'side by side (S)';
     const sides = viewer.visibleSides();
-    labels.replaceChildren(...sides.map((s) => el('span', { class: 'side-label' }, s)));
+    // the side's name and its size (thesis 4.6: the counts are in the viewing area)
+    labels.replaceChildren(...sides.map((s) => {
+      const m = viewer.sides[s].meshData;
+      const size = m ? `${fmt(m.decimated ? m.faces : m.indices.length / 3)} faces` +
+        (m.decimated ? '' : `, ${fmt(m.positions.length / 3)} vertices`) : '';
+      return el('span', { class: 'side-label' }, s, el('small', {}, size));
+    }));
     labels.style.gridTemplateColumns = `repeat(${sides.length}, 1fr)`;
     const n = meshNotes(viewer);
     notes.replaceChildren(...n.map((t) => el('div', { class: 'note' }, t)));

@@ -180,7 +180,12 @@ $('export-form').addEventListener('submit', (e) => {
   if (v.which === 'after' && !viewer.sides.after.mesh) { status('no result to export yet', 'error'); return; }
   download(api.exportUrl(v.which, v.format), `${v.which}.${v.format}`);
 });
-$('png').addEventListener('click', () => download(viewer.png(), 'mrepair-view.png'));
+// the PNG carries the settings (a tEXt chunk), which Load settings reads back
+$('png').addEventListener('click', () => {
+  const bytes = Uint8Array.from(atob(viewer.png().split(',')[1]), (c) => c.charCodeAt(0));
+  const png = settings.pngWithSettings(bytes, settings.collect(forms, viewer));
+  download(URL.createObjectURL(new Blob([png], { type: 'image/png' })), 'mrepair-view.png');
+});
 $('save-settings').addEventListener('click', () => {
   const blob = new Blob([JSON.stringify(settings.collect(forms, viewer), null, 2)], { type: 'application/json' });
   download(URL.createObjectURL(blob), 'mrepair-settings.json');
@@ -189,7 +194,10 @@ $('load-settings').addEventListener('change', async (e) => {
   const file = e.target.files[0];
   if (!file) return;
   try {
-    settings.apply(JSON.parse(await file.text()), forms, viewer);
+    const bytes = new Uint8Array(await file.arrayBuffer());
+    const loaded = settings.isPng(bytes) ? settings.settingsFromPng(bytes) : JSON.parse(new TextDecoder().decode(bytes));
+    if (!loaded) throw new Error('this PNG holds no mrepair settings');
+    settings.apply(loaded, forms, viewer);
     updateRepairForm();
     status(`settings loaded from ${file.name}`);
   } catch (err) {

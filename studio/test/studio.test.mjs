@@ -190,7 +190,16 @@ async function main() {
   await page.waitForFunction(() => document.querySelector('#repair-form input[name=spike_angle]').value === '95');
   assert.equal(await page.isChecked('#repair-form input[name=step_fill_small_holes]'), false);
   assert.equal(await page.inputValue('#gap-form input[name=tolerance]'), '0.02');
-  log('5. settings saved and loaded back');
+  // the PNG of the view carries the settings too (thesis 4.6)
+  const [pngDownload] = await Promise.all([page.waitForEvent('download'), page.click('#png')]);
+  const pngPath = join(work, 'view.png');
+  await pngDownload.saveAs(pngPath);
+  assert.equal(readFileSync(pngPath).subarray(1, 4).toString(), 'PNG');
+  await page.fill('#repair-form input[name=spike_angle]', '61');
+  await page.setInputFiles('#load-settings', pngPath);
+  await page.waitForFunction(() => document.querySelector('#repair-form input[name=spike_angle]').value === '95');
+  await noErrors('settings');
+  log('5. settings saved and loaded back, from the JSON and from the PNG of the view');
 
   // 6. a PNG of the view: before/after of the run, defects visible
   await page.evaluate(() => { delete window.studio.timings.clean; });
