@@ -55,10 +55,14 @@ def triangle_set(V, F):
 
 def main(argv):
     cmd, path = argv[0], argv[1]
-    if cmd == "faces":
-        V, F = mrepair.read(path)
-        return {"vertices": len(V), "faces": len(F)}
+    if cmd == "html":
+        V, F = mrepair.read(argv[2])
+        V2, F2, report = mrepair.repair(V, F)
+        mrepair.html_report(path, V, F, V2, F2, report, {"job": "repair", "profile": "auto"})
+        return {"before": counts(V, F), "after": counts(V2, F2)}
     V, F = mrepair.read(path)
+    if cmd == "faces":
+        return {"vertices": len(V), "faces": len(F)}
     if cmd == "counts":
         return counts(V, F)
     if cmd == "input-hash":
@@ -77,12 +81,6 @@ def main(argv):
             out["hashes"].append({"distance": float(d), "position": seq.position, "hash": mesh_hash(W, G),
                                   "triangles": triangle_set(W, G), "input_triangles": triangle_set(V, F)})
         return out
-    if cmd == "html":
-        src = argv[2]
-        V, F = mrepair.read(src)
-        V2, F2, report = mrepair.repair(V, F)
-        mrepair.html_report(path, V, F, V2, F2, report, {"job": "repair", "profile": "auto"})
-        return {"before": counts(V, F), "after": counts(V2, F2)}
     raise SystemExit("unknown command " + cmd)
 
 
