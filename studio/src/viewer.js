@@ -17,6 +17,15 @@ function makeSide(name) {
   return { name, scene, light, mesh: null, meshData: null, defects: null, hidden: new Set() };
 }
 
+function finiteBox(p) {
+  const box = new THREE.Box3();
+  const v = new THREE.Vector3();
+  for (let i = 0; i + 2 < p.length; i += 3) {
+    if (Number.isFinite(p[i]) && Number.isFinite(p[i + 1]) && Number.isFinite(p[i + 2])) box.expandByPoint(v.set(p[i], p[i + 1], p[i + 2]));
+  }
+  return box;
+}
+
 export class Viewer {
   constructor(container) {
     this.container = container;
@@ -72,7 +81,9 @@ export class Viewer {
       const g = new THREE.BufferGeometry();
       g.setAttribute('position', new THREE.BufferAttribute(mesh.positions, 3));
       g.setIndex(new THREE.BufferAttribute(mesh.indices, 1));
-      g.computeBoundingSphere();
+      // the bounds of the finite positions (a NaN vertex must not lose the camera)
+      g.boundingBox = finiteBox(mesh.positions);
+      g.boundingSphere = g.boundingBox.isEmpty() ? new THREE.Sphere() : g.boundingBox.getBoundingSphere(new THREE.Sphere());
       const material = new THREE.MeshStandardMaterial({
         color: side === 'before' ? '#b9bec8' : '#c8c2b4', flatShading: true, roughness: 0.8,
         metalness: 0.0, side: THREE.DoubleSide, wireframe: this.wireframe,
@@ -139,7 +150,7 @@ export class Viewer {
   // the camera frames both meshes
   frameAll() {
     const box = new THREE.Box3();
-    for (const side of SIDES) if (this.sides[side].mesh) box.expandByObject(this.sides[side].mesh);
+    for (const side of SIDES) if (this.sides[side].mesh) box.union(this.sides[side].mesh.geometry.boundingBox);
     if (box.isEmpty()) return;
     const sphere = box.getBoundingSphere(new THREE.Sphere());
     this.place(sphere.center, sphere.radius, new THREE.Vector3(0.6, 0.45, 1).normalize());
