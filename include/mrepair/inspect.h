@@ -80,6 +80,85 @@ bool start_inspection(const NamedParameters& np, Inspect_thresholds& t, Inspecti
   return true;
 }
 
+// inspect_polygon_soup(), listing the defects into `sink` when it is not null
+// (locate_defects.h).
+template <typename PointRange, typename PolygonRange, typename NamedParameters>
+Inspection_report inspect_soup(const PointRange& points, const PolygonRange& polygons,
+                               const NamedParameters& np, Defect_locations* sink)
+{
+  Inspection_report r;
+  r.from_mesh = false;
+  Inspect_thresholds t;
+  if (!start_inspection(np, t, r)) return r;
+  Visitor_handle<NamedParameters> visitor(np);
+  Surface_arrays a;
+  {
+    Phase_scope<decltype(visitor)> phase(visitor, "inspect: topology");
+    if (!build_soup_arrays(points, polygons, a, r.invalid_polygons)) {
+      r.status = Status::invalid_parameter;
+      r.message = "soup too large (more than 2^32 - 1 points or corners)";
+      return r;
+    }
+  }
+  Phase_scope<decltype(visitor)> phase(visitor, "inspect: geometry");
+  Surface_analysis analysis(a, t, r);
+  analysis.set_sink(sink);
+  analysis.run(nullptr);
+  const bool count_si = get_or<bool>(np, internal_np::count_self_intersections, true);
+  count_self_intersections(a, analysis, count_si, visitor, r);
+  finish_status(r, analysis.non_finite_referenced);
+  return r;
+}
+
+// inspect(), listing the defects into `sink` when it is not null.
+template <typename PolygonMesh, typename NamedParameters>
+Inspection_report inspect_mesh(const PolygonMesh& pmesh, const NamedParameters& np, Defect_locations* sink)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  Inspection_report r;
+  r.from_mesh = true;
+  Inspect_thresholds t;
+  if (!start_inspection(np, t, r)) return r;
+  const bool count_si = get_or<bool>(np, internal_np::count_self_intersections, true);
+  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                              get_const_property_map(CGAL::vertex_point, pmesh));
+  Visitor_handle<NamedParameters> visitor(np);
+  // every count below walks faces and vertices: a broken structure is
+  // reported, not walked (bounded_walks.h)
+  if (std::string broken = halfedge_structure_defect(pmesh); !broken.empty()) {
+    r.status = Status::invalid_mesh;
+    r.message = "inspect: the mesh's halfedge structure is broken: " + broken;
+    return r;
+  }
+  Surface_arrays a;
+  std::vector<std::size_t> loops;
+  std::vector<std::vector<Inspect_index>> cycle_vertices;  // with a sink
+  {
+    Phase_scope<decltype(visitor)> phase(visitor, "inspect: topology");
+    const Status built = build_mesh_arrays(pmesh, vpm, a, loops, sink ? &cycle_vertices : nullptr);
+    if (built != Status::ok) {
+      r.status = built;
+      r.message = built == Status::invalid_mesh ? walk_bound_message("inspect: the border cycles")
+                                                : "mesh too large (more than 2^32 - 1 elements)";
+      return r;
+    }
+  }
+  std::size_t non_finite_referenced = 0;
+  {
+    Phase_scope<decltype(visitor)> phase(visitor, "inspect: geometry");
+    Surface_analysis analysis(a, t, r);
+    analysis.set_sink(sink, &cycle_vertices);
+    analysis.run(&loops);
+    free_memory(cycle_vertices);
+    non_finite_referenced = analysis.non_finite_referenced;
+    free_memory(loops);
+    count_self_intersections(a, analysis, count_si, visitor, r);
+  }
+  finish_status(r, non_finite_referenced);
+  return r;
+}
+
 } // namespace internal
 
 /// \ingroup mrepair_inspect
@@ -117,27 +196,7 @@ template <typename PointRange, typename PolygonRange,
 Inspection_report inspect_polygon_soup(const PointRange& points, const PolygonRange& polygons,
                                        const NamedParameters& np = CGAL::parameters::default_values())
 {
-  Inspection_report r;
-  r.from_mesh = false;
-  internal::Inspect_thresholds t;
-  if (!internal::start_inspection(np, t, r)) return r;
-  internal::Visitor_handle<NamedParameters> visitor(np);
-  internal::Surface_arrays a;
-  {
-    internal::Phase_scope<decltype(visitor)> phase(visitor, "inspect: topology");
-    if (!internal::build_soup_arrays(points, polygons, a, r.invalid_polygons)) {
-      r.status = Status::invalid_parameter;
-      r.message = "soup too large (more than 2^32 - 1 points or corners)";
-      return r;
-    }
-  }
-  internal::Phase_scope<decltype(visitor)> phase(visitor, "inspect: geometry");
-  internal::Surface_analysis analysis(a, t, r);
-  analysis.run(nullptr);
-  const bool count_si = internal::get_or<bool>(np, internal_np::count_self_intersections, true);
-  internal::count_self_intersections(a, analysis, count_si, visitor, r);
-  internal::finish_status(r, analysis.non_finite_referenced);
-  return r;
+  return internal::inspect_soup(points, polygons, np, nullptr);
 }
 
 /// \ingroup mrepair_inspect
@@ -163,46 +222,7 @@ template <typename PolygonMesh,
 Inspection_report inspect(const PolygonMesh& pmesh,
                           const NamedParameters& np = CGAL::parameters::default_values())
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  Inspection_report r;
-  r.from_mesh = true;
-  internal::Inspect_thresholds t;
-  if (!internal::start_inspection(np, t, r)) return r;
-  const bool count_si = internal::get_or<bool>(np, internal_np::count_self_intersections, true);
-  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
-                              get_const_property_map(CGAL::vertex_point, pmesh));
-  internal::Visitor_handle<NamedParameters> visitor(np);
-  // every count below walks faces and vertices: a broken structure is
-  // reported, not walked (bounded_walks.h)
-  if (std::string broken = internal::halfedge_structure_defect(pmesh); !broken.empty()) {
-    r.status = Status::invalid_mesh;
-    r.message = "inspect: the mesh's halfedge structure is broken: " + broken;
-    return r;
-  }
-  internal::Surface_arrays a;
-  std::vector<std::size_t> loops;
-  {
-    internal::Phase_scope<decltype(visitor)> phase(visitor, "inspect: topology");
-    const Status built = internal::build_mesh_arrays(pmesh, vpm, a, loops);
-    if (built != Status::ok) {
-      r.status = built;
-      r.message = built == Status::invalid_mesh ? internal::walk_bound_message("inspect: the border cycles")
-                                                : "mesh too large (more than 2^32 - 1 elements)";
-      return r;
-    }
-  }
-  std::size_t non_finite_referenced = 0;
-  {
-    internal::Phase_scope<decltype(visitor)> phase(visitor, "inspect: geometry");
-    internal::Surface_analysis analysis(a, t, r);
-    analysis.run(&loops);
-    non_finite_referenced = analysis.non_finite_referenced;
-    internal::free_memory(loops);
-    internal::count_self_intersections(a, analysis, count_si, visitor, r);
-  }
-  internal::finish_status(r, non_finite_referenced);
-  return r;
+  return internal::inspect_mesh(pmesh, np, nullptr);
 }
 
 } // namespace mrepair

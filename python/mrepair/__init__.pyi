@@ -48,6 +48,51 @@ def inspect(
 
     None: the library's default (doc/defects.md)."""
 
+DefectKind = Dict[str, Any]
+"""one kind of defect: "count" (int) and int64 arrays "vertices", "edges" (k, 2),
+"faces", "pairs" (k, 2) or "loops" (list of vertex arrays); see locate_defects"""
+
+def locate_defects(
+    V: Vertices,
+    F: Faces,
+    *,
+    spike_angle: Optional[float] = None,
+    small_hole: Optional[int] = None,
+    small_component: Optional[int] = None,
+    t_junction_tolerance: Optional[float] = None,
+    self_intersections: bool = True,
+) -> Dict[str, DefectKind]:
+    """where the defects that `inspect` counts are (doc/studio.md).
+
+    Keys boundary_loops, small_holes, non_manifold_edges, non_manifold_vertices,
+    spikes, near_degenerate_faces, small_components, crossing_pairs, t_junctions;
+    each "count" equals the count of `inspect(V, F)` with the same options.
+    Boundary loops are vertex walks (-1 ends each open walk of a loop that is not
+    one closed walk); small_holes has "loops" and "indices" (into boundary_loops),
+    small_components "faces" and "components", crossing_pairs "pairs", "touching"
+    and "computed", t_junctions "vertices" and the "edges" they lie on."""
+
+def defect_overlay(
+    V: Vertices,
+    F: Faces,
+    *,
+    spike_angle: Optional[float] = None,
+    small_hole: Optional[int] = None,
+    small_component: Optional[int] = None,
+    t_junction_tolerance: Optional[float] = None,
+    self_intersections: bool = True,
+    max_elements: int = 100000,
+) -> Dict[str, Dict[str, Dict[str, Any]]]:
+    """the defects as geometry: {"kinds": {kind: {"count", "label", "color",
+    "points" float32 (k, 3), "segments" (k, 6), "triangles" (k, 9), "first",
+    "first_radius", "drawn", "truncated"}}}, at most max_elements elements per kind."""
+
+def preview_mesh(
+    V: Vertices, F: Faces, face_budget: int
+) -> Tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32], bool]:
+    """(V2, F2, decimated): the mesh as triangles when it has at most face_budget
+    of them, else a vertex-clustering preview with at most face_budget triangles."""
+
 def soup_to_manifold(
     V: Vertices,
     F: Faces,

@@ -7,7 +7,9 @@
 #include "binding.h"
 
 #include <mrepair/inspect.h>
+#include <mrepair/internal/studio/overlay.h>
 #include <mrepair/io.h>
+#include <mrepair/locate_defects.h>
 #include <mrepair/repair.h>
 #include <mrepair/stitch_soup.h>
 
@@ -105,6 +107,182 @@ py::object inspect(const py::object& vertices, const py::object& faces,
   });
   visitor.raise_if_stopped();
   return dict_of(report);
+}
+
+// ---- defect locations, overlay and preview (doc/studio.md) -----------------------------
+
+struct Inspect_options
+{
+  std::optional<double> spike_angle;
+  std::optional<long long> small_hole, small_component;
+  std::optional<double> t_junction_tolerance;
+  bool self_intersections = true;
+};
+
+// the defects of the soup (V, F), as mrepair.inspect counts them in "defects"
+Defect_locations locate(const Soup& s, const Inspect_options& o)
+{
+  if (o.spike_angle && !(*o.spike_angle >= 0 && *o.spike_angle <= 180))
+    raise_value_error("spike_angle expects degrees in [0, 180]");
+  if (o.small_hole.value_or(0) < 0 || o.small_component.value_or(0) < 0)
+    raise_value_error("small_hole and small_component must not be negative");
+  const double tol = o.t_junction_tolerance ? *o.t_junction_tolerance : -1.;
+  if (o.t_junction_tolerance && !(tol >= 0 && std::isfinite(tol)))
+    raise_value_error("t_junction_tolerance expects a non-negative distance");
+  Defect_locations d = without_gil([&] {
+    return locate_defects(
+        s.points, s.polygons,
+        MP::spike_angle(o.spike_angle,
+                        MP::max_hole_vertices(
+                            o.small_hole,
+                            MP::min_component_faces(o.small_component,
+                                                    MP::t_junction_tolerance(
+                                                        tol, MP::count_self_intersections(o.self_intersections))))));
+  });
+  if (d.report.status == Status::invalid_parameter) raise_value_error(status_line(d.report.status, d.report.message));
+  return d;
+}
+
+py::array_t<std::int64_t> int_array(const std::vector<Defect_locations::Index>& v)
+{
+  py::array_t<std::int64_t> a(static_cast<py::ssize_t>(v.size()));
+  std::int64_t* o = a.mutable_data();
+  for (Defect_locations::Index x : v) *o++ = x == Defect_locations::walk_end ? -1 : static_cast<std::int64_t>(x);
+  return a;
+}
+
+py::array_t<std::int64_t> pair_array(const std::vector<std::array<Defect_locations::Index, 2>>& v)
+{
+  py::array_t<std::int64_t> a({static_cast<py::ssize_t>(v.size()), py::ssize_t(2)});
+  std::int64_t* o = a.mutable_data();
+  for (const auto& p : v) {
+    *o++ = static_cast<std::int64_t>(p[0]);
+    *o++ = static_cast<std::int64_t>(p[1]);
+  }
+  return a;
+}
+
+py::list array_list(const std::vector<std::vector<Defect_locations::Index>>& v)
+{
+  py::list l;
+  for (const auto& x : v) l.append(int_array(x));
+  return l;
+}
+
+py::dict locate_defects_py(const py::object& vertices, const py::object& faces,
+                           const std::optional<double>& spike_angle, const std::optional<long long>& small_hole,
+                           const std::optional<long long>& small_component,
+                           const std::optional<double>& t_junction_tolerance, bool self_intersections)
+{
+  const Soup s = soup_from(vertices, faces);
+  const Defect_locations d =
+      locate(s, {spike_angle, small_hole, small_component, t_junction_tolerance, self_intersections});
+  const Inspection_report& r = d.report;
+  auto kind = [](std::size_t count) {
+    py::dict k;
+    k["count"] = count;
+    return k;
+  };
+  py::dict out;
+  py::dict loops = kind(r.boundary_loops);
+  loops["loops"] = array_list(d.boundary_loops);
+  out["boundary_loops"] = loops;
+  py::dict holes = kind(r.small_holes);
+  py::list hole_loops;
+  for (Defect_locations::Index i : d.small_holes) hole_loops.append(int_array(d.boundary_loops[i]));
+  holes["loops"] = hole_loops;
+  holes["indices"] = int_array(d.small_holes);
+  out["small_holes"] = holes;
+  py::dict nme = kind(r.non_manifold_edges);
+  nme["edges"] = pair_array(d.non_manifold_edges);
+  out["non_manifold_edges"] = nme;
+  py::dict nmv = kind(r.non_manifold_vertices);
+  nmv["vertices"] = int_array(d.non_manifold_vertices);
+  out["non_manifold_vertices"] = nmv;
+  py::dict spikes = kind(r.spiked_vertices);
+  spikes["vertices"] = int_array(d.spiked_vertices);
+  out["spikes"] = spikes;
+  py::dict nd = kind(r.near_degenerate_faces);
+  nd["faces"] = int_array(d.near_degenerate_faces);
+  out["near_degenerate_faces"] = nd;
+  py::dict comps = kind(r.small_components);
+  std::vector<Defect_locations::Index> all_faces;
+  for (const auto& c : d.small_components) all_faces.insert(all_faces.end(), c.begin(), c.end());
+  comps["faces"] = int_array(all_faces);
+  comps["components"] = array_list(d.small_components);
+  out["small_components"] = comps;
+  py::dict pairs = kind(r.self_intersecting_pairs);
+  pairs["pairs"] = pair_array(d.self_intersecting_pairs);
+  py::array_t<bool> touching(static_cast<py::ssize_t>(d.self_intersecting_pairs_touching.size()));
+  for (std::size_t i = 0; i < d.self_intersecting_pairs_touching.size(); ++i)
+    touching.mutable_data()[i] = d.self_intersecting_pairs_touching[i] != 0;
+  pairs["touching"] = touching;
+  pairs["computed"] = r.self_intersections_counted;
+  out["crossing_pairs"] = pairs;
+  py::dict tj = kind(r.t_junctions);
+  tj["vertices"] = int_array(d.t_junction_vertices);
+  tj["edges"] = pair_array(d.t_junction_edges);
+  out["t_junctions"] = tj;
+  return out;
+}
+
+py::array_t<float> float_array(const std::vector<float>& v, py::ssize_t width)
+{
+  py::array_t<float> a({static_cast<py::ssize_t>(v.size()) / width, width});
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
+}
+
+py::dict defect_overlay_py(const py::object& vertices, const py::object& faces,
+                           const std::optional<double>& spike_angle, const std::optional<long long>& small_hole,
+                           const std::optional<long long>& small_component,
+                           const std::optional<double>& t_junction_tolerance, bool self_intersections,
+                           long long max_elements)
+{
+  if (max_elements < 0) raise_value_error("max_elements must not be negative");
+  const Soup s = soup_from(vertices, faces);
+  const Defect_locations d =
+      locate(s, {spike_angle, small_hole, small_component, t_junction_tolerance, self_intersections});
+  const internal::Defect_overlay o = without_gil([&] {
+    return internal::make_defect_overlay(internal::indexed_faces_of_soup(s.points, s.polygons), d,
+                                         static_cast<std::size_t>(max_elements));
+  });
+  py::dict kinds;
+  for (const internal::Overlay_kind& k : o.kinds) {
+    py::dict x;
+    x["count"] = k.count;
+    x["label"] = k.label;
+    x["color"] = k.color;
+    x["points"] = float_array(k.points, 3);
+    x["segments"] = float_array(k.segments, 6);
+    x["triangles"] = float_array(k.triangles, 9);
+    if (k.has_first) {
+      x["first"] = py::make_tuple(k.first[0], k.first[1], k.first[2]);
+      x["first_radius"] = k.first_radius;
+    } else {
+      x["first"] = py::none();
+      x["first_radius"] = py::none();
+    }
+    x["drawn"] = k.drawn;
+    x["truncated"] = k.truncated;
+    kinds[py::str(k.key)] = x;
+  }
+  py::dict out;
+  out["kinds"] = kinds;
+  return out;
+}
+
+py::tuple preview_mesh_py(const py::object& vertices, const py::object& faces, long long face_budget)
+{
+  if (face_budget < 0) raise_value_error("face_budget must not be negative");
+  const Soup s = soup_from(vertices, faces);
+  const internal::Mesh_preview p = without_gil([&] {
+    return internal::make_preview(internal::indexed_faces_of_soup(s.points, s.polygons),
+                                  static_cast<std::size_t>(face_budget));
+  });
+  py::array_t<std::uint32_t> F({static_cast<py::ssize_t>(p.indices.size() / 3), py::ssize_t(3)});
+  std::copy(p.indices.begin(), p.indices.end(), F.mutable_data());
+  return py::make_tuple(float_array(p.positions, 3), F, p.decimated);
 }
 
 // `mrepair soup`: polygon soup to oriented manifold triangle mesh.
@@ -303,6 +481,43 @@ input_self_intersections: count them in the inspection before too (off by
 Raises ValueError with the stage and the reason when a stage fails.
 progress: None or progress(phase, fraction); returning False cancels
   (mrepair.Cancelled), as Ctrl-C does (KeyboardInterrupt).)doc");
+
+  m.def("locate_defects", &mp::locate_defects_py, "V"_a, "F"_a, py::kw_only(), "spike_angle"_a = py::none(),
+        "small_hole"_a = py::none(), "small_component"_a = py::none(), "t_junction_tolerance"_a = py::none(),
+        "self_intersections"_a = true,
+        R"doc(Returns where the defects that mrepair.inspect counts are, a dict.
+
+One entry per kind (doc/studio.md): boundary_loops, small_holes,
+non_manifold_edges, non_manifold_vertices, spikes, near_degenerate_faces,
+small_components, crossing_pairs, t_junctions. Each is a dict with "count"
+(equal to the count of mrepair.inspect(V, F) with the same options, in its
+"defects" section) and int64 arrays: "vertices", "edges" (k, 2 vertices),
+"faces", "pairs" (k, 2 faces), "loops" (a list of vertex arrays in walk
+order; -1 ends each open walk of a loop that is not one closed walk).
+small_holes also has "indices" (into boundary_loops' loops),
+small_components "components" (one face array each), crossing_pairs
+"touching" (bool per pair: only touching at coincident vertices) and
+"computed" (False when self-intersections were not counted).
+Options as in mrepair.inspect.)doc");
+
+  m.def("defect_overlay", &mp::defect_overlay_py, "V"_a, "F"_a, py::kw_only(), "spike_angle"_a = py::none(),
+        "small_hole"_a = py::none(), "small_component"_a = py::none(), "t_junction_tolerance"_a = py::none(),
+        "self_intersections"_a = true, "max_elements"_a = 100000,
+        R"doc(Returns the defects as geometry to draw: {"kinds": {kind: dict}}.
+
+Per kind, in the order of mrepair.locate_defects: count, label, color
+("#rrggbb"), float32 arrays points (k, 3), segments (k, 6), triangles
+(k, 9), first (centre of the first instance, or None), first_radius,
+drawn (instances drawn) and truncated (at most max_elements points,
+segments and triangles per kind). The HTML report embeds the same dict,
+its arrays in base64 (doc/studio.md).)doc");
+
+  m.def("preview_mesh", &mp::preview_mesh_py, "V"_a, "F"_a, "face_budget"_a,
+        R"doc(Returns (V2 float32 (n, 3), F2 uint32 (m, 3), decimated: bool).
+
+The mesh itself (polygons split into triangles) when it has at most
+face_budget triangles; else a vertex clustering on a uniform grid with at
+most face_budget triangles (decimated True), for drawing large meshes.)doc");
 
   mp::register_mesh_calls(m);
 }

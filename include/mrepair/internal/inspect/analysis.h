@@ -2,6 +2,7 @@
 #ifndef MREPAIR_INTERNAL_INSPECT_ANALYSIS_H
 #define MREPAIR_INTERNAL_INSPECT_ANALYSIS_H
 
+#include <mrepair/defect_locations.h>
 #include <mrepair/definitions.h>
 #include <mrepair/inspection_report.h>
 #include <mrepair/internal/inspect/parallel.h>
@@ -47,6 +48,11 @@ struct Inspect_thresholds
 // The caller supplies border cycle lengths for meshes (halfedge cycles);
 // for soups (`border_cycles == nullptr`) loops are the connected components
 // of the graph of boundary edges.
+//
+// With a location sink (`set_sink()`), each count also lists its instances
+// where it counts them (locate_defects.h), so that a count and its list
+// cannot disagree; without one, nothing is listed and the passes are those
+// of the counts alone (a null test per instance counted).
 class Surface_analysis
 {
   using K = CGAL::Epick;
@@ -67,9 +73,22 @@ class Surface_analysis
   std::vector<Inspect_index> valence_;
   std::vector<unsigned char> not_interior_, boundary_vertex_, spiked_, referenced_;
   double bbox_diag_ = 0;
+  Defect_locations* sink_ = nullptr;
+  // mesh border cycles as vertex lists (with a sink), from build_mesh_arrays
+  const std::vector<std::vector<Inspect_index>>* cycle_vertices_ = nullptr;
 
 public:
   std::size_t non_finite_referenced = 0;
+
+  // lists the instances of each counted defect into `sink` (its `report` is
+  // not touched: the counts go to the report given to the constructor).
+  // For meshes, `cycle_vertices` are the border cycles' vertices, in the
+  // order of the cycle lengths given to run().
+  void set_sink(Defect_locations* sink, const std::vector<std::vector<Inspect_index>>* cycle_vertices = nullptr)
+  {
+    sink_ = sink;
+    cycle_vertices_ = cycle_vertices;
+  }
 
   Surface_analysis(const Surface_arrays& a, const Inspect_thresholds& t, Inspection_report& r)
     : a_(a), t_(t), r_(r)
@@ -120,13 +139,26 @@ public:
 
   // Self-intersecting pairs of distinct triangles (see self_intersections.h);
   // run after `run()`, only when every face is a triangle with finite corners.
+  // With a sink, every pair is listed into it.
   Self_intersection_counts self_intersecting_pairs() const
   {
     const std::size_t nf = a_.num_faces();
     std::vector<unsigned char> eligible(nf);
     for (std::size_t f = 0; f < nf; ++f)
       eligible[f] = a_.degree(f) == 3 && face_ok_[f] && !repeated_[f] && !collinear_[f];
-    return Self_intersection_counter(a_).count(eligible);
+    Self_intersection_counts c = Self_intersection_counter(a_).count(eligible, false, sink_ != nullptr);
+    if (sink_) {
+      // in face order, whatever the threads did
+      std::vector<std::size_t> order(c.listed.size());
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+      std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return c.listed[x] < c.listed[y]; });
+      for (std::size_t i : order) {
+        sink_->self_intersecting_pairs.push_back({c.listed[i].first, c.listed[i].second});
+        sink_->self_intersecting_pairs_touching.push_back(c.listed_touching[i]);
+      }
+      free_memory(c.listed, c.listed_touching);
+    }
+    return c;
   }
 
 private:
@@ -477,13 +509,17 @@ private:
     {
       std::size_t boundary = 0, non_manifold = 0, inconsistent = 0, lengths = 0;
       double sum = 0, max_dihedral = -1;
+      std::vector<Inspect_index> non_manifold_edges;  // with a sink
     };
     auto acc = chunked<Acc>(ne, [&](std::size_t b, std::size_t e_end, Acc& s) {
       for (std::size_t e = b; e < e_end; ++e) {
         const std::size_t nfe = a_.edge_off[e + 1] - a_.edge_off[e];
         const Inspect_index v0 = a_.edge_v[2 * e], v1 = a_.edge_v[2 * e + 1];
         if (nfe == 1) ++s.boundary;
-        if (nfe > 2) ++s.non_manifold;
+        if (nfe > 2) {
+          ++s.non_manifold;
+          if (sink_) s.non_manifold_edges.push_back(static_cast<Inspect_index>(e));
+        }
         if (a_.finite[v0] && a_.finite[v1]) {
           const double *p = a_.point(v0), *q = a_.point(v1);
           const double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
@@ -521,6 +557,9 @@ private:
       tot.lengths += s.lengths;
       tot.sum += s.sum;
       tot.max_dihedral = std::max(tot.max_dihedral, s.max_dihedral);
+      if (sink_)
+        for (Inspect_index e : s.non_manifold_edges)
+          sink_->non_manifold_edges.push_back({a_.edge_v[2 * std::size_t(e)], a_.edge_v[2 * std::size_t(e) + 1]});
     }
     r_.boundary_edges = tot.boundary;
     r_.non_manifold_edges = tot.non_manifold;
@@ -578,7 +617,15 @@ private:
     vertex_corner_table();
     spikes_by_height(max_dihedral, inconsistent);
     std::size_t spiked = 0;
-    for (std::size_t v = 0; v < nv; ++v) spiked += spiked_[v];
+    if (sink_) {
+      for (std::size_t v = 0; v < nv; ++v)
+        if (spiked_[v]) {
+          ++spiked;
+          sink_->spiked_vertices.push_back(v);
+        }
+    } else {
+      for (std::size_t v = 0; v < nv; ++v) spiked += spiked_[v];
+    }
     r_.spiked_vertices = spiked;
   }
 
@@ -649,7 +696,12 @@ private:
     auto skinny = [&](std::size_t e) { return crit.is_skinny_edge(edge_len_[e], local_mean(e)); };
     const std::size_t nf = a_.num_faces(), ne = a_.num_edges();
     std::vector<unsigned char> small_opposite(ne, 0);
-    auto acc = chunked<std::size_t>(nf, [&](std::size_t b, std::size_t e_end, std::size_t& s) {
+    struct Acc
+    {
+      std::size_t n = 0;
+      std::vector<Inspect_index> faces;  // with a sink
+    };
+    auto acc = chunked<Acc>(nf, [&](std::size_t b, std::size_t e_end, Acc& s) {
       for (std::size_t f = b; f < e_end; ++f) {
         if (a_.degree(f) != 3 || !face_ok_[f] || repeated_[f]) continue;
         const std::size_t c0 = a_.face_off[f];
@@ -658,13 +710,17 @@ private:
           if (e == inspect_npos) continue;
           const bool opposite_is_skinny = skinny_corner_[c0 + (i + 2) % 3];
           if (crit.edge_makes_face_near_degenerate(edge_len_[e], opposite_is_skinny, mean, local_mean(e))) {
-            ++s;
+            ++s.n;
+            if (sink_) s.faces.push_back(static_cast<Inspect_index>(f));
             break;
           }
         }
       }
     });
-    for (std::size_t s : acc) r_.near_degenerate_faces += s;
+    for (const Acc& s : acc) {
+      r_.near_degenerate_faces += s.n;
+      if (sink_) sink_->near_degenerate_faces.insert(sink_->near_degenerate_faces.end(), s.faces.begin(), s.faces.end());
+    }
     for (std::size_t f = 0; f < nf; ++f) {
       if (a_.degree(f) != 3 || !face_ok_[f] || repeated_[f]) continue;
       const std::size_t c0 = a_.face_off[f];
@@ -696,11 +752,26 @@ private:
     std::vector<Inspect_index> size(nf, 0);
     for (std::size_t f = 0; f < nf; ++f)
       if (!a_.face_skip[f]) ++size[uf.find(static_cast<Inspect_index>(f))];
+    std::vector<Inspect_index> slot;  // with a sink: per root, its small component's list + 1
+    if (sink_) slot.assign(nf, 0);
     for (std::size_t f = 0; f < nf; ++f) {
       if (size[f] == 0) continue;
       ++r_.connected_components;
-      if (size[f] < t_.min_component_faces) ++r_.small_components;
+      if (size[f] < t_.min_component_faces) {
+        ++r_.small_components;
+        if (sink_) {
+          sink_->small_components.emplace_back();
+          sink_->small_components.back().reserve(size[f]);
+          slot[f] = static_cast<Inspect_index>(sink_->small_components.size());
+        }
+      }
     }
+    if (sink_ && !sink_->small_components.empty())
+      for (std::size_t f = 0; f < nf; ++f) {
+        if (a_.face_skip[f]) continue;
+        const Inspect_index k = slot[uf.find(static_cast<Inspect_index>(f))];
+        if (k) sink_->small_components[k - 1].push_back(f);
+      }
   }
 
   // A vertex is non-manifold when the faces around it, linked through the
@@ -738,14 +809,23 @@ private:
       }
     });
     for (std::size_t s : acc) r_.non_manifold_vertices += s;
+    if (sink_)
+      for (std::size_t v = 0; v < nv; ++v)
+        if (non_manifold_vertex_[v]) sink_->non_manifold_vertices.push_back(v);
   }
   std::vector<unsigned char> non_manifold_vertex_;
 
   void count_loops(const std::vector<std::size_t>& loops)
   {
     r_.boundary_loops = loops.size();
-    for (std::size_t n : loops)
-      if (n < t_.max_hole_vertices) ++r_.small_holes;
+    for (std::size_t i = 0; i < loops.size(); ++i)
+      if (loops[i] < t_.max_hole_vertices) {
+        ++r_.small_holes;
+        if (sink_) sink_->small_holes.push_back(i);
+      }
+    if (sink_ && cycle_vertices_)
+      for (const std::vector<Inspect_index>& c : *cycle_vertices_)
+        sink_->boundary_loops.emplace_back(c.begin(), c.end());
   }
 
   // Soup: a loop is a connected component of the graph of boundary edges; its
@@ -762,7 +842,86 @@ private:
     std::vector<std::size_t> loops;
     for (std::size_t v = 0; v < nv; ++v)
       if (size[v]) loops.push_back(size[v]);
+    if (sink_) soup_loop_walks(uf, size);
     count_loops(loops);
+  }
+
+  // With a sink: the vertices of each soup loop (roots in vertex order, as
+  // soup_loops() lists the loop sizes) in walk order. Each loop is walked by
+  // Hierholzer's algorithm from a vertex of odd boundary degree if it has
+  // one; a loop whose walk does not use every edge is listed as open walks.
+  void soup_loop_walks(Union_find<Inspect_index>& uf, const std::vector<Inspect_index>& size)
+  {
+    const std::size_t nv = a_.num_vertices, ne = a_.num_edges();
+    std::vector<Inspect_index> bedges;  // the boundary edges
+    for (std::size_t e = 0; e < ne; ++e)
+      if (a_.edge_off[e + 1] - a_.edge_off[e] == 1) bedges.push_back(static_cast<Inspect_index>(e));
+    // incidences (vertex -> boundary edge ids)
+    std::vector<Inspect_index> first, inc;
+    bucket_items(2 * bedges.size(), nv, inspect_npos,
+                 [&](std::size_t i) { return a_.edge_v[2 * std::size_t(bedges[i / 2]) + i % 2]; }, first, inc);
+    std::vector<Inspect_index> next_inc(first.begin(), first.end() - 1);  // per vertex: next unused incidence
+    std::vector<unsigned char> used(bedges.size(), 0);
+    auto other = [&](std::size_t i, Inspect_index v) {
+      const std::size_t e = bedges[i / 2];
+      return a_.edge_v[2 * e] == v ? a_.edge_v[2 * e + 1] : a_.edge_v[2 * e];
+    };
+    // vertices of each loop (by root), in vertex order
+    std::vector<Inspect_index> slot(nv, inspect_npos);
+    std::size_t nloops = 0;
+    for (std::size_t v = 0; v < nv; ++v)
+      if (size[v]) slot[v] = static_cast<Inspect_index>(nloops++);
+    std::vector<std::vector<Inspect_index>> members(nloops);
+    for (std::size_t v = 0; v < nv; ++v)
+      if (first[v + 1] != first[v]) members[slot[uf.find(static_cast<Inspect_index>(v))]].push_back(static_cast<Inspect_index>(v));
+    auto has_unused = [&](Inspect_index v) {
+      while (next_inc[v] < first[v + 1] && used[inc[next_inc[v]] / 2]) ++next_inc[v];
+      return next_inc[v] < first[v + 1];
+    };
+    std::vector<Inspect_index> stack, walk;
+    for (std::size_t l = 0; l < nloops; ++l) {
+      std::vector<Defect_locations::Index> out;
+      const std::vector<Inspect_index>& m = members[l];
+      std::size_t walks = 0;
+      bool open = false;
+      for (;;) {
+        // start: an odd vertex with unused edges, else any vertex with unused edges
+        Inspect_index start = inspect_npos;
+        for (Inspect_index v : m) {
+          if (!has_unused(v)) continue;
+          std::size_t unused = 0;
+          for (Inspect_index i = first[v]; i < first[v + 1]; ++i) unused += !used[inc[i] / 2];
+          if (unused % 2) {
+            start = v;
+            break;
+          }
+          if (start == inspect_npos) start = v;
+        }
+        if (start == inspect_npos) break;
+        walk.clear();
+        stack.assign(1, start);
+        while (!stack.empty()) {
+          const Inspect_index v = stack.back();
+          if (has_unused(v)) {
+            const Inspect_index i = inc[next_inc[v]];
+            used[i / 2] = 1;
+            stack.push_back(other(i, v));
+          } else {
+            walk.push_back(v);
+            stack.pop_back();
+          }
+        }
+        ++walks;
+        if (walk.front() != walk.back()) open = true;
+        out.insert(out.end(), walk.begin(), walk.end());
+        out.push_back(Defect_locations::walk_end);
+      }
+      if (walks == 1 && !open) {
+        out.pop_back();  // walk_end
+        out.pop_back();  // the closing vertex, listed first
+      }
+      sink_->boundary_loops.push_back(std::move(out));
+    }
   }
 
   // A boundary vertex lying within `tol` of the interior of a boundary edge it
@@ -794,7 +953,12 @@ private:
     for (std::size_t v = 0; v < nv; ++v)
       if (boundary_vertex_[v] && a_.finite[v]) bv.push_back(static_cast<Inspect_index>(v));
     const double tol2 = tol * tol;
-    auto acc = chunked<std::size_t>(bv.size(), [&](std::size_t b, std::size_t e_end, std::size_t& s) {
+    struct Acc
+    {
+      std::size_t n = 0;
+      std::vector<std::pair<Inspect_index, Inspect_index>> found;  // (vertex, edge), with a sink
+    };
+    auto acc = chunked<Acc>(bv.size(), [&](std::size_t b, std::size_t e_end, Acc& s) {
       std::vector<Primitive::Id> hits;
       for (std::size_t i = b; i < e_end; ++i) {
         const Inspect_index v = bv[i];
@@ -819,12 +983,20 @@ private:
           if (r[0] * r[0] + r[1] * r[1] + r[2] * r[2] > tol2) continue;
           if (w[0] * w[0] + w[1] * w[1] + w[2] * w[2] <= tol2) continue;
           if (u[0] * u[0] + u[1] * u[1] + u[2] * u[2] <= tol2) continue;
-          ++s;
+          ++s.n;
+          if (sink_) s.found.emplace_back(v, static_cast<Inspect_index>(e));
           break;
         }
       }
     });
-    for (std::size_t s : acc) r_.t_junctions += s;
+    for (const Acc& s : acc) {
+      r_.t_junctions += s.n;
+      if (sink_)
+        for (const auto& ve : s.found) {
+          sink_->t_junction_vertices.push_back(ve.first);
+          sink_->t_junction_edges.push_back({a_.edge_v[2 * std::size_t(ve.second)], a_.edge_v[2 * std::size_t(ve.second) + 1]});
+        }
+    }
   }
 
   void valence_and_closedness()

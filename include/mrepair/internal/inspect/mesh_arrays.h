@@ -27,9 +27,12 @@ namespace internal {
 // Surface_mesh garbage does not matter. Returns `Status::ok`,
 // `invalid_parameter` when the mesh is too large for 32-bit indices, or
 // `invalid_mesh` when a border walk hit its bound (a broken next()).
+// With `cycle_vertices`, also lists each border cycle's vertices (the
+// sources of its halfedges, in next() order).
 template <typename PolygonMesh, typename VertexPointMap>
 Status build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arrays& a,
-                       std::vector<std::size_t>& border_cycles)
+                       std::vector<std::size_t>& border_cycles,
+                       std::vector<std::vector<Inspect_index>>* cycle_vertices = nullptr)
 {
   using GT = boost::graph_traits<PolygonMesh>;
   using vertex_descriptor = typename GT::vertex_descriptor;
@@ -160,6 +163,7 @@ Status build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arra
 
   // border cycles, walked with next() as CGAL defines them
   border_cycles.clear();
+  if (cycle_vertices) cycle_vertices->clear();
   std::vector<unsigned char> seen(hslots, 0);
   std::vector<halfedge_descriptor> border;
   border_halfedges(pm, border);
@@ -168,9 +172,11 @@ Status build_mesh_arrays(const PolygonMesh& pm, VertexPointMap vpm, Surface_arra
     std::size_t len = 0;
     halfedge_descriptor g = h;
     Walk_bound bound(hslots);
+    if (cycle_vertices) cycle_vertices->emplace_back();
     do {
       seen[get(him, g)] = 1;
       ++len;
+      if (cycle_vertices) cycle_vertices->back().push_back(vid[get(vim, source(g, pm))]);
       g = next(g, pm);
     } while (g != h && bound.step() && static_cast<std::size_t>(get(him, g)) < hslots);
     if (g != h) return Status::invalid_mesh;  // the walk left the halfedges or never came back

@@ -168,6 +168,10 @@ struct Self_intersection_counts
   // with count(eligible, true): the pairs that cross (not only touching),
   // as indices of the arrays' faces, lower index first, in no fixed order
   std::vector<std::pair<Inspect_index, Inspect_index>> crossing;
+  // with count(eligible, _, true): every pair counted in `pairs` (lower index
+  // first, in no fixed order), and per pair 1 when it only touches
+  std::vector<std::pair<Inspect_index, Inspect_index>> listed;
+  std::vector<unsigned char> listed_touching;
 };
 
 class Self_intersection_counter
@@ -224,7 +228,8 @@ public:
     return 1;
   }
 
-  Self_intersection_counts count(const std::vector<unsigned char>& eligible, bool list_crossing = false) const
+  Self_intersection_counts count(const std::vector<unsigned char>& eligible, bool list_crossing = false,
+                                 bool list_all = false) const
   {
     std::vector<Inspect_index> F;
     for (std::size_t f = 0; f < a_.num_faces(); ++f)
@@ -366,10 +371,14 @@ public:
         if (x[d] > y[3 + d] || y[d] > x[3 + d]) return false;
       return true;
     };
-    auto add = [list_crossing](Self_intersection_counts& c, int contact, Inspect_index f, Inspect_index g) {
+    auto add = [list_crossing, list_all](Self_intersection_counts& c, int contact, Inspect_index f, Inspect_index g) {
       c.pairs += contact != 0;
       c.touching += contact == 2;
       if (list_crossing && contact == 1) c.crossing.emplace_back(std::min(f, g), std::max(f, g));
+      if (list_all && contact != 0) {
+        c.listed.emplace_back(std::min(f, g), std::max(f, g));
+        c.listed_touching.push_back(contact == 2);
+      }
     };
     for (const Self_intersection_counts& s : chunked<Self_intersection_counts>(nb, [&](std::size_t b, std::size_t e,
                                                                                      Self_intersection_counts& s) {
@@ -416,6 +425,8 @@ public:
       counts.pairs += s.pairs;
       counts.touching += s.touching;
       counts.crossing.insert(counts.crossing.end(), s.crossing.begin(), s.crossing.end());
+      counts.listed.insert(counts.listed.end(), s.listed.begin(), s.listed.end());
+      counts.listed_touching.insert(counts.listed_touching.end(), s.listed_touching.begin(), s.listed_touching.end());
     }
 
     // big faces: against the others (box_intersection_d) and among themselves
