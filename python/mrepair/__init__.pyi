@@ -208,7 +208,7 @@ def html_report(
     settings: Optional[Dict[str, Any]] = None,
     *,
     title: Optional[str] = None,
-    face_budget: int = 400000,
+    face_budget: int = 500000,
     max_elements: int = 100000,
     spike_angle: Optional[float] = None,
     small_hole: Optional[int] = None,

@@ -49,8 +49,8 @@ def html_report(path, V_before, F_before, V_after, F_after, report, settings=Non
         title = os.path.basename(os.fspath(path))
     payload = report_payload(V_before, F_before, V_after, F_after, report, settings, title=title,
                              face_budget=face_budget, max_elements=max_elements, **inspect_options)
-    # "</" cannot end the <script> element early once escaped ("<\/" is the same JSON string)
-    text = json.dumps(payload, default=json_default, separators=(",", ":")).replace("</", "<\\/")
+    # every "<" as \u003c (as the CLI writes it): no string can end the <script> element early
+    text = json.dumps(payload, default=json_default, separators=(",", ":")).replace("<", "\\u003c")
     html = template.replace(PLACEHOLDER, text, 1)
     with open(path, "w", encoding="utf-8") as f:
         f.write(html)

@@ -13,7 +13,7 @@ from . import _mrepair
 
 TEMPLATE = "report_template.html"
 PLACEHOLDER = "/*MREPAIR_PAYLOAD*/"
-DEFAULT_FACE_BUDGET = 400_000
+DEFAULT_FACE_BUDGET = 500_000  # the CLI's --html-faces default too
 
 
 def _configured_dirs():
