@@ -26,13 +26,13 @@ def _configured_dirs():
 
 
 def studio_asset_dirs():
-    """the candidate folders, in the order they are tried: env MREPAIR_STUDIO_ASSETS, the
+    """the candidate folders, in the order they are tried: env MREPAIR_STUDIO_ASSETS alone when
+    it is set (as the CLI: a folder named on purpose is never silently replaced), else the
     build folder, the install folder, <sys.prefix>/share/mrepair/studio."""
-    dirs = []
     env = os.environ.get("MREPAIR_STUDIO_ASSETS")
     if env:
-        dirs.append(env)
-    dirs += _configured_dirs()
+        return [env]
+    dirs = _configured_dirs()
     dirs.append(os.path.join(sys.prefix, "share", "mrepair", "studio"))
     return dirs
 

@@ -151,8 +151,7 @@ def test_html_report(tmp_path, monkeypatch):
     assert payload["report"]["note"] == "</script>"   # escaped in the file, the same string read back
     assert payload["meshes"]["before"]["faces"] == len(F)
     assert set(payload["defects"]["after"]["kinds"]) >= {"boundary_loops", "spikes", "crossing_pairs"}
+    # a folder named in MREPAIR_STUDIO_ASSETS is the only one looked in
     monkeypatch.setenv("MREPAIR_STUDIO_ASSETS", str(tmp_path / "nowhere"))
-    monkeypatch.setattr(mrepair._studio_assets, "_configured_dirs", lambda: [])
-    monkeypatch.setattr(mrepair._studio_assets.sys, "prefix", str(tmp_path / "nowhere"))
     with pytest.raises(FileNotFoundError, match="mrepair-studio-assets"):
         mrepair.html_report(str(out), V, F, V, F, {})
