@@ -82,6 +82,7 @@ async function main() {
   const pageErrors = [];
   page.on('pageerror', (e) => pageErrors.push(e.message));
   page.on('console', (m) => { if (m.type() === 'error') pageErrors.push(m.text()); });
+  page.on('response', (r) => { if (r.status() >= 400) pageErrors.push(`${r.status()} ${r.url()}`); });
   const idle = () => page.waitForFunction(() => window.studio && window.studio.ready && window.studio.busy === 0,
                                           null, { timeout: 60000 });
   const noErrors = async (what) => {
