@@ -105,6 +105,7 @@ function gapStatus(g) {
   studio.gap = g;
   $('gap-status').textContent = `${fmt(g.position)} contractions (${fmt(g.size)} found so far), ` +
     `closing distance ${g.current_distance.toPrecision(4)} of ${g.max_distance.toPrecision(4)}, ${fmt(g.faces)} faces`;
+  status(`gap closing: ${fmt(g.position)} contractions applied` + (g.position === 0 ? ' (the input)' : ''));
 }
 // moves the sequence; the latest request wins while one is running
 function gapMove(move) {
@@ -135,7 +136,7 @@ $('gap-form').addEventListener('submit', (e) => {
   e.preventDefault();
   const v = settings.formValues($('gap-form'));
   busy('building the gap-closing sequence', async () => {
-    const g = await api.gapInit({ tolerance: v.tolerance, relative: v.relative, lambda_: v.lambda_ });
+    const g = await api.gapInit({ tolerance: v.tolerance, relative: v.relative, lambda_: v.lambda_, source: v.source });
     slider.max = String(g.max_distance);
     slider.step = String(g.max_distance / 1000 || 1);
     slider.value = '0';

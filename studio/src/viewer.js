@@ -70,6 +70,7 @@ export class Viewer {
   // mesh: {positions: Float32Array, indices: Uint32Array, faces, decimated}
   setMesh(side, mesh) {
     const s = this.sides[side];
+    const columns = this.visibleSides().length;
     if (s.mesh) {
       s.scene.remove(s.mesh);
       s.mesh.geometry.dispose();
@@ -91,6 +92,8 @@ export class Viewer {
       s.mesh = new THREE.Mesh(g, material);
       s.scene.add(s.mesh);
     }
+    // the viewports changed width (a first result beside the input): frame again
+    if (this.visibleSides().length !== columns) this.frameAll();
     this.requestRender();
     this.emit();
   }
@@ -139,7 +142,13 @@ export class Viewer {
     this.emit();
   }
 
-  setLayout(layout) { this.layout = layout; this.requestRender(); this.emit(); }
+  setLayout(layout) {
+    const columns = this.visibleSides().length;
+    this.layout = layout;
+    if (this.visibleSides().length !== columns) this.frameAll();
+    this.requestRender();
+    this.emit();
+  }
   toggleShown() {
     if (this.layout === 'split') this.layout = 'single';
     else this.shown = this.shown === 'after' ? 'before' : 'after';
@@ -156,9 +165,17 @@ export class Viewer {
     this.place(sphere.center, sphere.radius, new THREE.Vector3(0.6, 0.45, 1).normalize());
   }
 
+  // the distance at which a sphere of radius r fills the narrower field of view of a viewport
+  fitDistance(r) {
+    const aspect = this.canvas.width / this.visibleSides().length / Math.max(1, this.canvas.height);
+    const v = THREE.MathUtils.degToRad(this.camera.fov) / 2;
+    const h = Math.atan(Math.tan(v) * aspect);
+    return r / Math.sin(Math.min(v, h));
+  }
+
   place(center, radius, direction) {
     const r = Math.max(radius, 1e-6);
-    const distance = r / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2)) * 1.1;
+    const distance = this.fitDistance(r) * 1.05;
     this.camera.near = distance / 1000;
     this.camera.far = distance * 100;
     this.camera.position.copy(center).addScaledVector(direction, distance);
@@ -174,7 +191,7 @@ export class Viewer {
     const size = this.sceneRadius();
     const r = Math.max(radius || 0, size * 0.03);
     const dir = this.camera.position.clone().sub(this.controls.target).normalize();
-    const distance = r / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2)) * 1.6;
+    const distance = this.fitDistance(r) * 1.6;
     const fromPos = this.camera.position.clone(), fromTarget = this.controls.target.clone();
     const toPos = center.clone().addScaledVector(dir, distance);
     const start = performance.now();

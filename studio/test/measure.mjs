@@ -14,8 +14,13 @@ import { fileURLToPath } from 'node:url';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const [mesh, out] = process.argv.slice(2);
-const gi = process.argv.indexOf('--gap');
-const gapTol = gi > 0 ? process.argv[gi + 1] : null;
+const opt = (name) => { const i = process.argv.indexOf(name); return i > 0 ? process.argv[i + 1] : null; };
+const gapTol = opt('--gap');            // build a gap-closing sequence with this relative tolerance
+const gapSource = opt('--gap-source');  // input | result
+const mode = opt('--mode');             // clean | repair
+const closeGaps = opt('--close-gaps');  // repair's close gaps tolerance (0: off)
+const fly = opt('--fly');               // a defect kind: fly to its first instance before the screenshots
+const runs = Number(opt('--runs') || 3);
 const env = process.env;
 const { chromium } = createRequire(join(env.MREPAIR_NODE_MODULES || join(here, '..'), 'package.json'))('playwright-core');
 mkdirSync(out, { recursive: true });
@@ -35,7 +40,9 @@ try {
   await page.goto(url);
   await idle();
   console.log(`load (read, inspect, mesh and defects drawn): ${((Date.now() - t0) / 1000).toFixed(2)} s`);
-  for (let i = 0; i < 3; i++) {
+  if (mode) await page.selectOption('#repair-form select[name=mode]', mode);
+  if (closeGaps !== null) await page.fill('#repair-form input[name=close_gaps]', closeGaps);
+  for (let i = 0; i < runs; i++) {
     await page.evaluate(() => { delete window.studio.timings.clean; delete window.studio.timings.repair; });
     await page.click('#run');
     await page.waitForFunction(() => window.studio.timings.clean || window.studio.timings.repair, null, { timeout: 600000 });
@@ -44,10 +51,17 @@ try {
     console.log(`run ${i + 1}: click -> redrawn mesh ${(t.total_ms / 1000).toFixed(2)} s (library ${(t.server_ms / 1000).toFixed(2)} s, ` +
                 `${t.faces} faces, ${t.drawn_faces} drawn), defects +${(t.defects_ms / 1000).toFixed(2)} s`);
   }
+  const flyTo = async (side) => {
+    if (!fly) return;
+    await page.click(`#defects button.count[data-kind=${fly}][data-side=${side}]`);
+    await page.waitForTimeout(1000);
+  };
+  await flyTo('before');
   await page.evaluate(() => document.getElementById('side').scrollTo(0, 0));
   await page.screenshot({ path: join(out, 'studio_before_after.png') });
   if (gapTol) {
     await page.fill('#gap-form input[name=tolerance]', gapTol);
+    if (gapSource) await page.selectOption('#gap-form select[name=source]', gapSource);
     await page.click('#gap-build');
     await idle();
     const max = await page.evaluate(() => window.studio.gap.max_distance);

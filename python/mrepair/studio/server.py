@@ -14,7 +14,7 @@ API (all under /api; errors are {"error": message} with status 400/404/500):
   POST run                   {mode: clean|repair, profile, skip: [step], params: {...}}
   POST remesh                {mode: uniform|adaptive, source: result|input, edge_length,
                               tolerance, feature_angle, iterations}
-  POST gap/init              {tolerance, relative, lambda_}: a GapClosingSequence of the input
+  POST gap/init              {tolerance, relative, lambda_, source: input|result}: a GapClosingSequence
   POST gap/move              {distance} | {forward: k} | {backward: k}
   GET  export/before|after?format=off|obj|ply|stl   the mesh file (mrepair.write)
   POST reset                 forgets the result
@@ -108,6 +108,7 @@ class Session:
         self.before = _Side(V, F, report, "input")
         self.after = None
         self.gap = None
+        self.gap_source = None
 
     # ---- state ------------------------------------------------------------------------------
     def manifold(self):
@@ -196,10 +197,15 @@ class Session:
         if not tol:
             raise ApiError("give the gap-closing tolerance (> 0)")
         lam = _number(body, "lambda_", float, 0)
+        # the input, or the result (e.g. a soup repaired with close_gaps=0: a mesh with its gaps)
+        if body.get("source") == "result" and self.after is not None:
+            src = self.gap_source if self.gap is not None else self.after
+        else:
+            src = self.before
         self.gap = None
-        seq = _mrepair.GapClosingSequence(self.before.V, self.before.F, tol, relative=bool(body.get("relative")),
+        seq = _mrepair.GapClosingSequence(src.V, src.F, tol, relative=bool(body.get("relative")),
                                           lambda_=0.5 if lam is None else lam)
-        self.gap = seq
+        self.gap, self.gap_source = seq, src
         return self._gap_state()
 
     def gap_move(self, body):
@@ -219,9 +225,10 @@ class Session:
         seq = self.gap
         report = seq.report()
         if seq.position == 0:
-            # exactly the input: after contractions undone the library's mesh is the same
-            # surface, but some faces may come back re-created (another order or first corner)
-            V, F = self.before.V, self.before.F
+            # exactly the sequence's input: with its contractions undone the library's mesh is
+            # the same surface, but some faces may come back re-created (another order or
+            # first corner)
+            V, F = self.gap_source.V, self.gap_source.F
         else:
             V, F = seq.mesh()
         self.after = _Side(V, F, report, "gap closing")
