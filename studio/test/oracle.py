@@ -9,6 +9,7 @@ page must show, computed here from the Python package, printed as JSON.
                                              uint32 indices), and of its triangles as a set
   oracle.py input-hash MESH                  the same hash of the input mesh
   oracle.py faces FILE                       faces of a mesh file
+  oracle.py remesh MESH EDGE                 sizes of mrepair.remesh(edge_length=EDGE)
   oracle.py html OUT MESH                    mrepair.html_report of mrepair.repair(MESH)
 """
 
@@ -67,6 +68,9 @@ def main(argv):
         return counts(V, F)
     if cmd == "input-hash":
         return mesh_hash(V, F)
+    if cmd == "remesh":
+        V2, F2, _ = mrepair.remesh(V, F, edge_length=float(argv[2]))
+        return {"vertices": len(V2), "faces": len(F2)}
     if cmd == "clean":
         skip = [s for s in (argv[2] if len(argv) > 2 else "").split(",") if s]
         V2, F2, _ = mrepair.clean(V, F, profile="auto", skip=skip or None)

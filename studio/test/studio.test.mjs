@@ -7,7 +7,7 @@
 //      mrepair.clean's results, and they differ (the holes stay)
 //   3. the gap-closing slider mid-way, at 0 and back: the page's mesh arrays hash
 //      like the GapClosingSequence's mesh at those distances; at 0, like the input
-//   4. a mesh export reads back with the result's face count
+//   4. a mesh export reads back with the result's face count; Remesh shows mrepair.remesh's mesh
 //   5. settings saved and loaded back restore the controls
 //   6. a PNG of the view: not blank, the defect colours present
 //   7. the HTML report (CLI --html when it has it, else mrepair.html_report) shows
@@ -142,6 +142,19 @@ async function main() {
   const resultFaces = await page.evaluate(() => window.studio.viewer.sides.after.meshData.faces);
   assert.equal(back.faces, resultFaces, 'the exported mesh has the result\'s faces');
   log(`4. exported OFF: ${back.faces} faces`);
+
+  // the remeshing panel, on the input
+  await page.evaluate(() => { delete window.studio.timings.remesh; });
+  await page.selectOption('#remesh-form select[name=mode]', 'uniform');
+  await page.selectOption('#remesh-form select[name=source]', 'input');
+  await page.fill('#remesh-form input[name=edge_length]', '0.05');
+  await page.click('#remesh');
+  await page.waitForFunction(() => window.studio.timings.remesh, null, { timeout: 60000 });
+  await idle();
+  await noErrors('remesh');
+  const remeshed = await page.evaluate(() => window.studio.viewer.sides.after.meshData.faces);
+  assert.equal(remeshed, oracle('remesh', mesh, 0.05).faces, 'the remeshed mesh is mrepair.remesh\'s');
+  log(`remesh (uniform, edge 0.05): ${remeshed} faces`);
 
   // 3. the gap-closing scrubber
   await page.fill('#gap-form input[name=tolerance]', '0.02');
