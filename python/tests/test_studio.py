@@ -155,3 +155,13 @@ def test_html_report(tmp_path, monkeypatch):
     monkeypatch.setenv("MREPAIR_STUDIO_ASSETS", str(tmp_path / "nowhere"))
     with pytest.raises(FileNotFoundError, match="mrepair-studio-assets"):
         mrepair.html_report(str(out), V, F, V, F, {})
+
+
+def test_preview_above_the_face_budget(tmp_path):
+    V, F = sphere(30, 60)
+    path = tmp_path / "big.off"
+    mrepair.write(str(path), V, F)
+    session = Session(path, face_budget=500)
+    P, I, faces, flags = binary_mesh(session.before.binary(session.face_budget))
+    assert flags == 1 and faces == len(F) and 0 < len(I) <= 500
+    assert session.state()["face_budget"] == 500

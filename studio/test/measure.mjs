@@ -24,7 +24,9 @@ const runs = Number(opt('--runs') || 3);
 const env = process.env;
 const { chromium } = createRequire(join(env.MREPAIR_NODE_MODULES || join(here, '..'), 'package.json'))('playwright-core');
 mkdirSync(out, { recursive: true });
-const server = spawn(env.MREPAIR_PYTHON || 'python3', ['-m', 'mrepair.studio', mesh, '--no-browser', '--quiet'],
+const budget = opt('--face-budget');
+const server = spawn(env.MREPAIR_PYTHON || 'python3', ['-m', 'mrepair.studio', mesh, '--no-browser', '--quiet',
+                                                       ...(budget ? ['--face-budget', budget] : [])],
                      { stdio: ['ignore', 'pipe', 'inherit'] });
 const url = await new Promise((resolve) => {
   let s = '';
