@@ -40,7 +40,8 @@ struct Is_named_parameters<CGAL::Named_function_parameters<T, Tag, Base>> : std:
 /// \return the lists, empty unless `report.status` is `ok`, `non_finite_input`
 ///   or `invalid_index` (invalid polygons are skipped, see `Defect_locations`)
 template <typename PointRange, typename PolygonRange,
-          typename NamedParameters = CGAL::parameters::Default_named_parameters>
+          typename NamedParameters = CGAL::parameters::Default_named_parameters,
+          typename = std::enable_if_t<!internal::Is_named_parameters<PolygonRange>::value>>
 Defect_locations locate_defects(const PointRange& points, const PolygonRange& polygons,
                                 const NamedParameters& np = CGAL::parameters::default_values())
 {
