@@ -33,7 +33,7 @@ const url = await new Promise((resolve) => {
   server.stdout.on('data', (d) => { s += d; const m = s.match(/http:\/\/127\.0\.0\.1:\d+\//); if (m) resolve(m[0]); });
 });
 const browser = await chromium.launch({ executablePath: env.MREPAIR_CHROMIUM || '/usr/bin/chromium', headless: true,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'] });
+  args: ['--no-sandbox', '--disable-dev-shm-usage', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'] });
 try {
   const page = await browser.newPage({ viewport: { width: 1400, height: 800 } });
   const idle = () => page.waitForFunction(() => window.studio && window.studio.ready && window.studio.busy === 0,

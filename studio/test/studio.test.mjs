@@ -76,7 +76,7 @@ async function main() {
 
   browser = await chromium.launch({
     executablePath: chromiumPath, headless: true,
-    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'] });
+    args: ['--no-sandbox', '--disable-dev-shm-usage', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'] });
   const context = await browser.newContext({ viewport: { width: 1400, height: 800 }, acceptDownloads: true });
   const page = await context.newPage();
   const pageErrors = [];
