@@ -89,7 +89,8 @@ $('repair-form').addEventListener('submit', (e) => {
   const v = settings.formValues($('repair-form'));
   const body = { mode: v.mode, profile: v.profile, params: {}, skip: [] };
   for (const [k, x] of Object.entries(v)) {
-    if (k.startsWith('step_')) { if (!x) body.skip.push(k.slice(5)); } else if (k !== 'mode' && k !== 'profile') body.params[k] = x;
+    // the steps are chosen one by one for the clean job only (repair runs its profile's)
+    if (k.startsWith('step_')) { if (!x && v.mode === 'clean') body.skip.push(k.slice(5)); } else if (k !== 'mode' && k !== 'profile') body.params[k] = x;
   }
   busy('running ' + v.mode, async () => {
     const t0 = performance.now();
