@@ -12,14 +12,26 @@
 #ifndef MREPAIR_TOOLS_CLI_IO_H
 #define MREPAIR_TOOLS_CLI_IO_H
 
+#include <mrepair/internal/studio/payload.h>
 #include <mrepair/io.h>
+#include <mrepair/locate_defects.h>
 #include <mrepair/report.h>
 #include <mrepair/status.h>
 #include <mrepair/triangulate_polygons.h>
 
 #include <chrono>
+#include <iostream>
 #include <string>
 #include <vector>
+
+// where the build puts the HTML report template (tools/CMakeLists.txt), and
+// where `make install` puts it
+#ifndef MREPAIR_STUDIO_BUILD_DIR
+#define MREPAIR_STUDIO_BUILD_DIR ""
+#endif
+#ifndef MREPAIR_STUDIO_INSTALL_DIR
+#define MREPAIR_STUDIO_INSTALL_DIR ""
+#endif
 
 namespace mrepair {
 namespace cli {
@@ -121,6 +133,71 @@ bool save_soup(const std::string& path, const std::vector<Point>& points,
   if (r.status == Status::ok) return true;
   error = internal_io::one_line(r, path);
   return false;
+}
+
+// ---- the HTML report (doc/studio.md) ------------------------------------------------
+
+/// the HTML report template: $MREPAIR_STUDIO_ASSETS, the build's studio
+/// folder, the installed one. "" and a message saying how to get it when none has it.
+inline std::string studio_template(std::string& error)
+{
+  std::string tried;
+  const std::string path =
+      internal::find_studio_template(MREPAIR_STUDIO_BUILD_DIR, MREPAIR_STUDIO_INSTALL_DIR, tried);
+  if (path.empty())
+    error = std::string("--html: no report template (") + internal::studio_template_name + ") in " +
+            (tried.empty() ? "any folder" : tried) +
+            "; build it with `cmake --build BUILD --target mrepair-studio-assets` (needs Node.js and npm, "
+            "option MREPAIR_BUILD_STUDIO) or set MREPAIR_STUDIO_ASSETS to a folder that holds it";
+  return path;
+}
+
+/// one mesh of the HTML report: its preview ("meshes") and its defect
+/// overlay ("defects") as JSON, from `locations` found on it
+struct Studio_view
+{
+  std::string mesh_json = "null", overlay_json = "null";
+};
+
+inline Studio_view studio_view(const internal::Indexed_faces& faces, const Defect_locations& locations,
+                               std::size_t face_budget, std::size_t max_elements)
+{
+  Studio_view v;
+  v.overlay_json = internal::overlay_json(internal::make_defect_overlay(faces, locations, max_elements));
+  v.mesh_json = internal::preview_json(internal::make_preview(faces, face_budget));
+  return v;
+}
+
+/// warns when a located count differs from the count of the report (they
+/// come from the same code; a difference means different thresholds)
+inline void check_located_counts(const Inspection_report& located, const Inspection_report& reported,
+                                 const char* which)
+{
+  const std::size_t a[] = {located.boundary_loops, located.small_holes, located.non_manifold_edges,
+                           located.non_manifold_vertices, located.spiked_vertices, located.near_degenerate_faces,
+                           located.small_components, located.self_intersecting_pairs, located.t_junctions};
+  const std::size_t b[] = {reported.boundary_loops, reported.small_holes, reported.non_manifold_edges,
+                           reported.non_manifold_vertices, reported.spiked_vertices, reported.near_degenerate_faces,
+                           reported.small_components, reported.self_intersecting_pairs, reported.t_junctions};
+  for (std::size_t i = 0; i < 9; ++i)
+    if (a[i] != b[i]) {
+      std::cerr << "mrepair: warning: --html: the " << which << " defects drawn differ from the report's count of "
+                << internal::overlay_kind_table()[i].key << " (" << a[i] << " vs " << b[i] << ")\n";
+    }
+}
+
+/// writes the HTML report `out_path` from `template_path` (doc/studio.md):
+/// the payload JSON in place of the placeholder line. "" or an error message.
+inline std::string write_studio_report(const std::string& template_path, const std::string& out_path,
+                                       const std::string& title, const Studio_view& before,
+                                       const Studio_view& after, const Report& report, const Report& settings)
+{
+  std::string payload = "{\"version\": 1, \"title\": " + internal::json_string(title) +
+                        ",\n\"meshes\": {\"before\": " + before.mesh_json + ",\n\"after\": " + after.mesh_json +
+                        "},\n\"defects\": {\"before\": " + before.overlay_json + ",\n\"after\": " +
+                        after.overlay_json + "},\n\"report\": " + report.to_json() +
+                        ",\n\"settings\": " + settings.to_json() + "}";
+  return internal::write_studio_html(template_path, out_path, internal::script_safe_json(payload));
 }
 
 } // namespace cli

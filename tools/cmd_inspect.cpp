@@ -4,16 +4,19 @@
 // also builds a Surface_mesh and reports what only a mesh has (its border
 // halfedge cycles).
 #include "cli.h"
+#include "cli_io.h"
 
 #include <mrepair/definitions.h>
 #include <mrepair/inspect.h>
 #include <mrepair/io.h>
+#include <mrepair/locate_defects.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +34,8 @@ const std::vector<cli::Option> options = {
     {"small-component", true, "components with fewer faces are small (400)"},
     {"t-junction-tolerance", true, "distance of a T-junction (default 1e-4 x bbox diagonal)"},
     {"no-self-intersections", false, "skip the self-intersection test"},
+    {"html", true, "also write an HTML report FILE: the mesh with its defects (doc/studio.md)"},
+    {"html-faces", true, "face budget of the mesh in the HTML report; larger ones are decimated (500000)"},
 };
 
 int run(int argc, char** argv);
@@ -62,6 +67,17 @@ int run(int argc, char** argv)
     throw cli::Usage_error("--t-junction-tolerance expects a non-negative distance");
   const bool self_intersections = !args.has("no-self-intersections");
   const std::string input = args.positional[0];
+  // --html: the template is found before any work (doc/studio.md)
+  std::string html_template;
+  const std::optional<std::size_t> html_faces = args.optional_count("html-faces", 1);
+  if (args.has("html")) {
+    std::string error;
+    html_template = cli::studio_template(error);
+    if (html_template.empty()) {
+      std::cerr << "mrepair inspect: " << error << "\n";
+      return 2;
+    }
+  }
 
   cli::Progress_printer printer(!args.has("quiet") && !args.has("json"));
   std::vector<Point> points;
@@ -82,7 +98,13 @@ int run(int argc, char** argv)
 
   mrepair::Report report;
   io.to_report(report.section("file"));
-  mrepair::Inspection_report soup = mrepair::inspect_polygon_soup(points, polygons, thresholds(self_intersections));
+  // with --html the same inspection, listing where the defects are
+  mrepair::Defect_locations located;
+  if (args.has("html"))
+    located = mrepair::locate_defects(points, polygons, thresholds(self_intersections));
+  else
+    located.report = mrepair::inspect_polygon_soup(points, polygons, thresholds(self_intersections));
+  const mrepair::Inspection_report& soup = located.report;
   soup.to_report(report);
 
   // The mesh view: only when the polygons form a valid polygon mesh.
@@ -105,6 +127,25 @@ int run(int argc, char** argv)
                                    : "not a manifold, consistently oriented polygon mesh");
   }
   if (!cli::emit_report(args, report)) return 1;
+  if (args.has("html")) {
+    const cli::Studio_view view = cli::studio_view(mrepair::internal::indexed_faces_of_soup(points, polygons), located,
+                                                   html_faces.value_or(500000), 100000);
+    mrepair::Report settings;
+    settings.add("spike_angle", spike);
+    settings.add("small_hole", hole);
+    settings.add("small_component", comp);
+    settings.add("t_junction_tolerance", soup.t_junction_tolerance);
+    settings.add("self_intersections", self_intersections);
+    settings.add("preview_face_budget", html_faces.value_or(500000));
+    settings.add("overlay_max_elements", std::size_t(100000));
+    std::string title = input;
+    const std::size_t slash = title.find_last_of("/\\");
+    if (slash != std::string::npos) title = title.substr(slash + 1);
+    // no "after": the inspection changes nothing
+    const std::string error =
+        cli::write_studio_report(html_template, args.get("html"), title, view, cli::Studio_view(), report, settings);
+    if (!error.empty()) return cli::fail(error);
+  }
   return soup.status == mrepair::Status::invalid_parameter ? 1 : 0;
 }
 

@@ -4,10 +4,12 @@
 // closing, cleaning by input profile, validity, inspections, face
 // accounting), print as it goes, write.
 #include "cli.h"
+#include "cli_io.h"
 
 #include <mrepair/input_profile.h>
 #include <mrepair/inspection_report.h>
 #include <mrepair/io.h>
+#include <mrepair/locate_defects.h>
 #include <mrepair/repair.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -45,7 +47,9 @@ const std::vector<cli::Option>& repair_options()
        "count self-intersections in the inspection of the input too (off: 1.9 s of a 6.8 s job at 1M faces)"},
       {"keep-shells-separate", false, "do not merge overlapping closed shells into their union"},
       {"no-resolve-intersections", false, "leave crossings as the cleaning left them (no solid repair)"},
-      {"binary", false, "write a binary file (PLY, STL)"}};
+      {"binary", false, "write a binary file (PLY, STL)"},
+      {"html", true, "also write an HTML report FILE: before/after meshes with their defects (doc/studio.md)"},
+      {"html-faces", true, "face budget of the meshes in the HTML report; larger ones are decimated (500000)"}};
   return o;
 }
 
@@ -94,6 +98,18 @@ int run_repair(int argc, char** argv)
       throw cli::Usage_error("--profile must be auto, scan or cad");
     profile = p;
   }
+  // --html: the template is found before any work (doc/studio.md)
+  std::string html_template;
+  const std::optional<std::size_t> html_faces = a.optional_count("html-faces", 1);
+  if (a.has("html")) {
+    std::string error;
+    html_template = cli::studio_template(error);
+    if (html_template.empty()) {
+      std::cerr << "mrepair repair: " << error << "\n";
+      return 2;
+    }
+  }
+  const std::size_t face_budget = html_faces.value_or(500000), max_elements = 100000;
   const bool quiet = a.has("quiet") || a.has("json");
   cli::Progress_printer printer(!quiet);
   // Memory: the input inspection and the soup stage allocate and free
@@ -182,6 +198,30 @@ int run_repair(int argc, char** argv)
     if (s == "after") print_inspection("after", r.after, quiet);
   };
   namespace MP = mrepair::parameters;
+  // the thresholds of the job's inspections (repair.h), for the defects drawn
+  auto inspect_thresholds = [&](bool count_pairs) {
+    return MP::max_hole_vertices(
+        max_hole.value_or(mrepair::defaults::max_hole_vertices),
+        MP::min_component_faces(min_comp.value_or(mrepair::defaults::min_component_faces),
+                                MP::spike_angle(spike.value_or(mrepair::defaults::spike_angle),
+                                                MP::count_self_intersections(count_pairs))));
+  };
+  // --html: the input's defects, before the job takes the soup over
+  cli::Studio_view html_before, html_after;
+  mrepair::Inspection_report located_before;
+  if (a.has("html")) {
+    const double seconds = cli::timed([&] {
+      const bool pairs = !a.has("no-self-intersections") && a.has("input-self-intersections");
+      mrepair::Defect_locations d =
+          all_triangles ? mrepair::locate_defects(points, triangles, inspect_thresholds(pairs))
+                        : mrepair::locate_defects(points, polygons, inspect_thresholds(pairs));
+      located_before = d.report;
+      html_before = cli::studio_view(all_triangles ? mrepair::internal::indexed_faces_of_soup(points, triangles)
+                                                   : mrepair::internal::indexed_faces_of_soup(points, polygons),
+                                     d, face_budget, max_elements);
+    });
+    if (!quiet) std::cerr << "  html: input defects: " << std::to_string(seconds).substr(0, 6) << " s\n";
+  }
   const auto np =
       MP::input_profile(
           profile,
@@ -225,6 +265,36 @@ int run_repair(int argc, char** argv)
   out.to_report(report.section("output"));
   report.section("output").add("seconds", write_seconds);
   if (!cli::emit_report(a, report)) return 1;
+  if (a.has("html")) {
+    std::string error;
+    const double seconds = cli::timed([&] {
+      cli::check_located_counts(located_before, r.before, "input");
+      const mrepair::Defect_locations d =
+          mrepair::locate_defects(mesh, inspect_thresholds(r.after.self_intersections_counted));
+      cli::check_located_counts(d.report, r.after, "output");
+      html_after = cli::studio_view(mrepair::internal::indexed_faces_of_mesh(mesh), d, face_budget, max_elements);
+      mrepair::Report settings;
+      settings.add("profile", a.has("profile") ? a.get("profile") : std::string("auto"));
+      settings.add("close_gaps", gap.value_or(std::numeric_limits<double>::quiet_NaN()));
+      settings.add("merge_epsilon", merge.value_or(0.));
+      settings.add("spike_angle", spike.value_or(mrepair::defaults::spike_angle));
+      settings.add("max_hole", max_hole ? static_cast<double>(*max_hole) : std::numeric_limits<double>::quiet_NaN());
+      settings.add("min_component", min_comp.value_or(mrepair::defaults::min_component_faces));
+      settings.add("iterations", iterations ? static_cast<double>(*iterations) : std::numeric_limits<double>::quiet_NaN());
+      settings.add("self_intersections", !a.has("no-self-intersections"));
+      settings.add("input_self_intersections", a.has("input-self-intersections"));
+      settings.add("resolve_intersections", !a.has("no-resolve-intersections"));
+      settings.add("merge_overlapping_shells", !a.has("keep-shells-separate"));
+      settings.add("preview_face_budget", face_budget);
+      settings.add("overlay_max_elements", max_elements);
+      std::string title = a.positional[0];
+      const std::size_t slash = title.find_last_of("/\\");
+      if (slash != std::string::npos) title = title.substr(slash + 1);
+      error = cli::write_studio_report(html_template, a.get("html"), title, html_before, html_after, report, settings);
+    });
+    if (!error.empty()) return cli::fail(error);
+    if (!quiet) std::cerr << "  html: " << a.get("html") << ": " << std::to_string(seconds).substr(0, 6) << " s\n";
+  }
   if (out.status != mrepair::Status::ok)
     return cli::fail(out.message.empty() ? a.positional[1] + ": cannot write" : out.message);
   if (r.status == mrepair::Status::empty_input)

@@ -327,6 +327,30 @@ def test_cli_html_report(tmp_path):
 
 
 @needs_cli
+def test_cli_inspect_html(tmp_path):
+    assets = tmp_path / "assets"
+    assets.mkdir()
+    (assets / "report_template.html").write_text(STAND_IN)
+    V, F = two_sheets(0.0, ny_left=8, ny_right=4)
+    src, html = tmp_path / "in.ply", tmp_path / "inspect.html"
+    mrepair.write(src, V, F)
+    run = subprocess.run([CLI, "inspect", str(src), "--json", "--html", str(html)], capture_output=True,
+                         text=True, env=dict(os.environ, MREPAIR_STUDIO_ASSETS=str(assets)))
+    assert run.returncode == 0, run.stderr
+    report = json.loads(run.stdout)
+    p = payload_of(html.read_text())
+    assert p["meshes"]["after"] is None and p["defects"]["after"] is None
+    assert p["report"]["defects"] == report["defects"]
+    loc = mrepair.locate_defects(V, F)
+    for kind, key in REPORT_KEY.items():
+        assert p["defects"]["before"]["kinds"][kind]["count"] == report["defects"][key] == loc[kind]["count"]
+    m = p["meshes"]["before"]
+    assert not m["decimated"] and m["faces"] == len(F)
+    assert np.array_equal(decode(m["indices"], np.uint32, 3), F)
+    assert np.allclose(decode(m["positions"], np.float32, 3), V)
+
+
+@needs_cli
 def test_cli_html_without_template_fails_before_work(tmp_path):
     V, F = grid(2, 2)
     src = tmp_path / "in.off"
@@ -338,3 +362,5 @@ def test_cli_html_without_template_fails_before_work(tmp_path):
     assert run.returncode == 2
     assert "report_template.html" in run.stderr and "mrepair-studio-assets" in run.stderr
     assert not out.exists() and not html.exists()
+    run = subprocess.run([CLI, "inspect", str(src), "--html", str(html)], capture_output=True, text=True, env=env)
+    assert run.returncode == 2 and "report_template.html" in run.stderr and not html.exists()
