@@ -2,6 +2,8 @@
 // Inspection: hand-built soups and meshes with hand-counted defects, on the
 // soup path and on both mesh types; a CGAL cross-check on a real mesh.
 #include <mrepair/inspect.h>
+#include <mrepair/internal/studio/overlay.h>
+#include <mrepair/locate_defects.h>
 #include <mrepair/relax_spikes.h>
 #include <mrepair/internal/triangle_intersection.h>
 
@@ -91,17 +93,74 @@ void set_point(Mesh& m, std::size_t index, const Point& p)
     if (i++ == index) put(vpm, v, typename boost::property_traits<decltype(vpm)>::value_type(p.x(), p.y(), p.z()));
 }
 
+// locate_defects(): its report is the inspection's (`r`), and every list has
+// as many instances as the report counts; the overlay draws them all.
+void expect_located(const mrepair::Defect_locations& d, const Inspection_report& r,
+                    const mrepair::internal::Indexed_faces& faces, const std::string& where)
+{
+  mrepair::Report a, b;
+  d.report.to_report(a);
+  r.to_report(b);
+  EXPECT_EQ(a.to_json(), b.to_json()) << where;
+  EXPECT_EQ(d.boundary_loops.size(), r.boundary_loops) << where;
+  std::size_t boundary_edges = 0;
+  for (std::size_t i = 0; i < d.boundary_loops.size(); ++i) boundary_edges += d.loop_edges(i);
+  // every boundary edge is on one loop (a soup non-manifold edge is not a boundary edge)
+  EXPECT_EQ(boundary_edges, r.boundary_edges) << where;
+  EXPECT_EQ(d.small_holes.size(), r.small_holes) << where;
+  for (std::size_t i : d.small_holes) EXPECT_LT(d.loop_edges(i), r.max_hole_vertices) << where;
+  EXPECT_EQ(d.non_manifold_edges.size(), r.non_manifold_edges) << where;
+  EXPECT_EQ(d.non_manifold_vertices.size(), r.non_manifold_vertices) << where;
+  EXPECT_EQ(d.spiked_vertices.size(), r.spiked_vertices) << where;
+  EXPECT_EQ(d.near_degenerate_faces.size(), r.near_degenerate_faces) << where;
+  EXPECT_EQ(d.small_components.size(), r.small_components) << where;
+  for (const auto& c : d.small_components) EXPECT_LT(c.size(), r.min_component_faces) << where;
+  EXPECT_EQ(d.self_intersecting_pairs.size(), r.self_intersections_counted ? r.self_intersecting_pairs : 0u)
+      << where;
+  std::size_t touching = 0;
+  for (unsigned char t : d.self_intersecting_pairs_touching) touching += t;
+  EXPECT_EQ(touching, r.self_intersections_counted ? r.self_intersecting_pairs_touching : 0u) << where;
+  EXPECT_EQ(d.t_junction_vertices.size(), r.t_junctions) << where;
+  EXPECT_EQ(d.t_junction_edges.size(), r.t_junctions) << where;
+  const mrepair::internal::Defect_overlay o = mrepair::internal::make_defect_overlay(faces, d, 1000000);
+  ASSERT_EQ(o.kinds.size(), 9u);
+  EXPECT_EQ(o.kinds[0].segments.size(), 6 * r.boundary_edges) << where;
+  EXPECT_EQ(o.kinds[2].segments.size(), 6 * r.non_manifold_edges) << where;
+  EXPECT_EQ(o.kinds[3].points.size(), 3 * r.non_manifold_vertices) << where;
+  EXPECT_EQ(o.kinds[4].points.size(), 3 * r.spiked_vertices) << where;
+  EXPECT_EQ(o.kinds[8].points.size(), 3 * r.t_junctions) << where;
+  for (const auto& k : o.kinds) {
+    EXPECT_EQ(k.drawn, k.count) << where << ": " << k.key;
+    EXPECT_EQ(k.has_first, k.count > 0) << where << ": " << k.key;
+  }
+}
+
+template <class Mesh>
+void expect_located_on_mesh(const Mesh& m, const std::string& where)
+{
+  expect_located(mrepair::locate_defects(m), mrepair::inspect(m), mrepair::internal::indexed_faces_of_mesh(m), where);
+}
+
+void expect_located_on_soup(const Soup& s, const std::string& where)
+{
+  expect_located(mrepair::locate_defects(s.points, s.polygons), mrepair::inspect_polygon_soup(s.points, s.polygons),
+                 mrepair::internal::indexed_faces_of_soup(s.points, s.polygons), where);
+}
+
 // Runs the soup inspection and, when the soup is a polygon mesh, the mesh
-// inspection too, and checks the same counts on both.
+// inspection too, and checks the same counts on both; and that
+// locate_defects() lists as many defects as they count.
 template <class Mesh>
 void expect_both(const Soup& s, const Counts& expected, const std::string& where)
 {
   Inspection_report rs = mrepair::inspect_polygon_soup(s.points, s.polygons);
   expect_counts(rs, expected, where + " (soup)");
+  expect_located_on_soup(s, where + " (soup)");
   Mesh m = to_mesh<Mesh>(s);
   ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
   Inspection_report rm = mrepair::inspect(m);
   expect_counts(rm, expected, where + " (mesh)");
+  expect_located_on_mesh(m, where + " (mesh)");
 }
 
 } // namespace
@@ -123,6 +182,18 @@ TEST(Inspect_soup, fin_is_one_non_manifold_edge)
                 "fin");
   EXPECT_TRUE(std::isnan(r.max_dihedral_angle)); // no edge with exactly two faces
   EXPECT_FALSE(r.closed);
+  expect_located_on_soup(s, "fin");
+  const mrepair::Defect_locations d = mrepair::locate_defects(s.points, s.polygons);
+  ASSERT_EQ(d.non_manifold_edges.size(), 1u);
+  EXPECT_EQ(d.non_manifold_edges[0], (std::array<std::size_t, 2>{{0, 1}}));
+  // the boundary graph: six edges, 0 and 1 with three each: one loop, listed
+  // as an open walk from 0 to 1 (then walk_end)
+  ASSERT_EQ(d.boundary_loops.size(), 1u);
+  EXPECT_EQ(d.loop_edges(0), 6u);
+  ASSERT_EQ(d.boundary_loops[0].size(), 8u);
+  EXPECT_EQ(d.boundary_loops[0].back(), mrepair::Defect_locations::walk_end);
+  EXPECT_EQ(std::min(d.boundary_loops[0].front(), d.boundary_loops[0][6]), 0u);
+  EXPECT_EQ(std::max(d.boundary_loops[0].front(), d.boundary_loops[0][6]), 1u);
 }
 
 TEST(Inspect_soup, bowtie_and_crack_vertices)
@@ -361,6 +432,13 @@ TYPED_TEST(Inspect, spike_raised_five_edge_lengths)
   EXPECT_EQ(sr.spiked_by_height_before, 1u);
   EXPECT_EQ(mrepair::inspect(relaxed).spiked_vertices, sr.spiked_vertices_after);
   EXPECT_EQ(r.self_intersecting_pairs, 0u);
+  // located: the apex; with 80 degrees the apex and its ring
+  EXPECT_EQ(mrepair::locate_defects(m).spiked_vertices, std::vector<std::size_t>{apex});
+  EXPECT_EQ(mrepair::locate_defects(s.points, s.polygons).spiked_vertices, std::vector<std::size_t>{apex});
+  const mrepair::Defect_locations d80 = mrepair::locate_defects(m, MP::spike_angle(80.0));
+  EXPECT_EQ(d80.spiked_vertices.size(), 7u);
+  EXPECT_TRUE(std::is_sorted(d80.spiked_vertices.begin(), d80.spiked_vertices.end()));
+  expect_located_on_mesh(m, "spike");
 }
 
 TYPED_TEST(Inspect, sliver_faces)
@@ -419,6 +497,26 @@ TYPED_TEST(Inspect, closed_icosphere)
   EXPECT_NEAR(r.mean_valence_deviation, 12.0 / 642.0, 1e-12); // the 12 valence-5 vertices
   EXPECT_LT(r.max_dihedral_angle, 20.0);
   EXPECT_TRUE(r.is_clean());
+  // no defect: every list empty
+  const mrepair::Defect_locations d = mrepair::locate_defects(m);
+  EXPECT_EQ(d.report.status, Status::ok);
+  EXPECT_TRUE(d.boundary_loops.empty() && d.small_holes.empty() && d.non_manifold_edges.empty() &&
+              d.non_manifold_vertices.empty() && d.spiked_vertices.empty() && d.near_degenerate_faces.empty() &&
+              d.small_components.empty() && d.self_intersecting_pairs.empty() && d.t_junction_vertices.empty());
+  const mrepair::internal::Defect_overlay o =
+      mrepair::internal::make_defect_overlay(mrepair::internal::indexed_faces_of_mesh(m), d, 100);
+  for (const auto& k : o.kinds)
+    EXPECT_TRUE(k.count == 0 && k.points.empty() && k.segments.empty() && k.triangles.empty() && !k.has_first);
+  // the preview: the mesh itself within the budget, else at most the budget
+  const mrepair::internal::Mesh_preview full = mrepair::internal::make_preview(mrepair::internal::indexed_faces_of_mesh(m), 1280);
+  EXPECT_FALSE(full.decimated);
+  EXPECT_EQ(full.indices.size(), 3 * 1280u);
+  EXPECT_EQ(full.positions.size(), 3 * 642u);
+  const mrepair::internal::Mesh_preview small = mrepair::internal::make_preview(mrepair::internal::indexed_faces_of_mesh(m), 300);
+  EXPECT_TRUE(small.decimated);
+  EXPECT_EQ(small.faces, 1280u);
+  EXPECT_LE(small.indices.size(), 3 * 300u);
+  EXPECT_GE(small.indices.size(), 3 * 30u);
 }
 
 TYPED_TEST(Inspect, pillow_is_a_duplicate_of_opposite_orientation)
@@ -579,6 +677,11 @@ TYPED_TEST(Inspect, t_junction_between_patches)
                         {"boundary_loops", 2}, {"connected_components", 2}, {"non_manifold_vertices", 0}},
                     "T-junction");
   Mesh m = to_mesh<Mesh>(s);
+  for (const mrepair::Defect_locations& d : {mrepair::locate_defects(s.points, s.polygons), mrepair::locate_defects(m)}) {
+    ASSERT_EQ(d.t_junction_vertices.size(), 1u);
+    EXPECT_EQ(d.t_junction_vertices[0], 8u);
+    EXPECT_EQ(d.t_junction_edges[0], (std::array<std::size_t, 2>{{1, 2}}));
+  }
   // a tolerance smaller than the gap misses a vertex moved 0.01 off the edge
   set_point(m, 8, Point(1.01, 0.5, 0));
   EXPECT_EQ(mrepair::inspect(m).t_junctions, 0u); // default 1e-4 x diagonal
@@ -642,6 +745,19 @@ TYPED_TEST(Inspect, agrees_with_cgal_on_elephant)
                         typename boost::graph_traits<Mesh>::face_descriptor>> si;
   PMP::self_intersections(m, std::back_inserter(si));
   EXPECT_EQ(r.self_intersecting_pairs, si.size());
+  expect_located_on_mesh(m, "elephant");
+  // the located pairs are CGAL's
+  {
+    const mrepair::Defect_locations d = mrepair::locate_defects(m);
+    std::map<typename boost::graph_traits<Mesh>::face_descriptor, std::size_t> fid;
+    for (auto f : faces(m)) fid.emplace(f, fid.size());
+    std::set<std::array<std::size_t, 2>> cgal, ours(d.self_intersecting_pairs.begin(), d.self_intersecting_pairs.end());
+    for (const auto& p : si) {
+      const std::size_t a = fid[p.first], b = fid[p.second];
+      cgal.insert({{std::min(a, b), std::max(a, b)}});
+    }
+    EXPECT_EQ(ours, cgal);
+  }
   std::set<std::array<double, 3>> distinct;
   for (auto v : vertices(m)) {
     auto p = get(CGAL::vertex_point, m, v);
