@@ -34,6 +34,7 @@ class CMakeBuild(build_ext):
             "-DMREPAIR_BUILD_EXAMPLES=OFF",
             "-DMREPAIR_BUILD_TOOLS=OFF",
             "-DMREPAIR_BUILD_BENCHMARKS=OFF",
+            "-DMREPAIR_BUILD_STUDIO=OFF",
             f"-DPython3_EXECUTABLE={sys.executable}",
             f"-DMREPAIR_PYTHON_OUTPUT_DIR={package_dir}",
         ]
@@ -44,7 +45,7 @@ class CMakeBuild(build_ext):
 
 
 setup(
-    packages=["mrepair"],
+    packages=["mrepair", "mrepair.studio"],
     package_dir={"": "python"},
     package_data={"mrepair": ["__init__.pyi", "py.typed"]},
     ext_modules=[CMakeExtension("mrepair._mrepair")],

@@ -8,7 +8,13 @@ packages=(cmake g++ make debian-archive-keyring libcgal-dev libeigen3-dev libtbb
           pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest
           python3-venv python3-setuptools python3-wheel
           # `mrepair.batch` on a Dask cluster (python3-dask comes with it) and its test
-          python3-distributed python3-dask)
+          python3-distributed python3-dask
+          # the studio's browser test (CTest studio_browser): headless chromium
+          chromium)
+# the studio's web assets are built with Node.js >= 18 and npm (CI has Node 20;
+# Debian 12's nodejs is 18, which builds them too)
+command -v node >/dev/null || packages+=(nodejs)
+command -v npm >/dev/null || packages+=(npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -33,6 +33,7 @@ from ._mrepair import (  # noqa: F401
     soup_to_manifold,
     write,
 )
+from ._html_report import html_report  # noqa: F401
 
 __all__ = [
     "Cancelled",
@@ -40,6 +41,7 @@ __all__ = [
     "clean",
     "close_gaps",
     "defect_overlay",
+    "html_report",
     "inspect",
     "locate_defects",
     "preview_mesh",

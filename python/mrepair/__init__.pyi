@@ -202,5 +202,29 @@ class GapClosingSequence:
     @property
     def max_distance(self) -> float: ...
 
+def html_report(
+    path: Union[str, PathLike[str]],
+    V_before: Vertices,
+    F_before: Faces,
+    V_after: Vertices,
+    F_after: Faces,
+    report: Report,
+    settings: Optional[Dict[str, Any]] = None,
+    *,
+    title: Optional[str] = None,
+    face_budget: int = 500000,
+    max_elements: int = 100000,
+    spike_angle: Optional[float] = None,
+    small_hole: Optional[int] = None,
+    small_component: Optional[int] = None,
+    t_junction_tolerance: Optional[float] = None,
+    self_intersections: bool = True,
+) -> None:
+    """writes the self-contained HTML report (the page of `mrepair repair --html`): the before
+    and after meshes with their defects in colour, the report tables and the settings.
+
+    Needs the studio's built web assets (MREPAIR_STUDIO_ASSETS, the build folder, or
+    <prefix>/share/mrepair/studio); FileNotFoundError says how to build them."""
+
 def progress_bar(bar: Any) -> Callable[[str, float], None]:
     """a progress callable that drives a tqdm bar."""
