@@ -49,6 +49,15 @@ inline Vec3 sub(const Vec3& a, const Vec3& b) { return {{a[0] - b[0], a[1] - b[1
 inline Vec3 add(const Vec3& a, const Vec3& b) { return {{a[0] + b[0], a[1] + b[1], a[2] + b[2]}}; }
 inline Vec3 mul(const Vec3& a, double s) { return {{a[0] * s, a[1] * s, a[2] * s}}; }
 inline Vec3 neg(const Vec3& a) { return {{-a[0], -a[1], -a[2]}}; }
+// The same four as operators, for formulas that read better with them (the
+// remesher's). Found by ordinary lookup from code inside mrepair::internal.
+inline Vec3 operator+(const Vec3& a, const Vec3& b) { return add(a, b); }
+inline Vec3 operator-(const Vec3& a, const Vec3& b) { return sub(a, b); }
+inline Vec3 operator*(const Vec3& a, double s) { return mul(a, s); }
+inline Vec3 operator*(double s, const Vec3& a) { return mul(a, s); }
+inline Vec3& operator+=(Vec3& a, const Vec3& b) { return a = add(a, b); }
+inline Vec3& operator-=(Vec3& a, const Vec3& b) { return a = sub(a, b); }
+inline Vec3& operator*=(Vec3& a, double s) { return a = mul(a, s); }
 inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 inline Vec3 cross(const Vec3& a, const Vec3& b)
 {
@@ -78,6 +87,9 @@ inline Vec3 normalized(const Vec3& a)
 /// angle between two vectors in [0, pi]; the atan2 form stays accurate near 0
 /// and pi, where acos of a dot product loses half its digits. 0 if one is zero.
 inline double angle(const Vec3& a, const Vec3& b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
+
+/// three doubles in a row (flat coordinate arrays) as a vector.
+inline Vec3 load_vec3(const double* p) { return {{p[0], p[1], p[2]}}; }
 
 /// any point type with x(), y(), z() (any kernel, exact ones included) in doubles.
 template <typename Point>
