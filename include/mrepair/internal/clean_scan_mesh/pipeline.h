@@ -169,6 +169,7 @@ Scan_cleaning_result run_pipeline(PolygonMesh& pmesh, const NamedParameters& np)
     if (!r.steps[i].enabled) return true;
     Phase_scope<Handle> phase(visitor, clean_step_name(i));
     const Stopwatch step_clock;
+    const Local_operation_counts before = ops.counts();
     Step_outcome o = body();
     Clean_step_stats& s = r.steps[i];
     s.seconds += step_clock.seconds();
@@ -176,8 +177,9 @@ Scan_cleaning_result run_pipeline(PolygonMesh& pmesh, const NamedParameters& np)
     if (!o.available) return true;
     ++s.runs;
     s.changes += o.changes;
-    s.faces_removed += o.faces_removed;
-    s.faces_added += o.faces_added;
+    // the face accounting: what the layer saw the step remove and add
+    s.faces_removed += ops.counts().faces_removed - before.faces_removed;
+    s.faces_added += ops.counts().faces_added - before.faces_added;
     s.last_status = o.status;
     s.last_report = std::move(o.report);
     return o.status != Status::cancelled;
@@ -224,7 +226,6 @@ Scan_cleaning_result run_pipeline(PolygonMesh& pmesh, const NamedParameters& np)
       }
       o.changes = r.faces_removed_with_non_finite + r.non_finite_vertices_removed +
                   r.isolated_vertices_removed;
-      o.faces_removed = r.faces_removed_with_non_finite;
       o.report.add("non_finite_vertices_removed", r.non_finite_vertices_removed);
       o.report.add("isolated_vertices_removed", r.isolated_vertices_removed);
       o.report.add("faces_removed_with_non_finite", r.faces_removed_with_non_finite);
@@ -255,7 +256,6 @@ Scan_cleaning_result run_pipeline(PolygonMesh& pmesh, const NamedParameters& np)
           Step_outcome o;
           o.status = b.status;
           o.changes = b.faces_removed + b.component_faces_removed;
-          o.faces_removed = o.changes;
           b.to_report(o.report);
           return o;
         }) &&
@@ -267,7 +267,6 @@ Scan_cleaning_result run_pipeline(PolygonMesh& pmesh, const NamedParameters& np)
           Step_outcome o;
           o.status = c.status;
           o.changes = c.faces_removed;
-          o.faces_removed = c.faces_removed;
           c.to_report(o.report);
           return o;
         }) &&
@@ -279,8 +278,6 @@ Scan_cleaning_result run_pipeline(PolygonMesh& pmesh, const NamedParameters& np)
           Step_outcome o;
           o.status = h.status;
           o.changes = h.holes_filled + h.enlargement_faces_removed;
-          o.faces_removed = h.enlargement_faces_removed;
-          o.faces_added = h.faces_added;
           h.to_report(o.report);
           return o;
         }) &&
@@ -309,12 +306,11 @@ Scan_cleaning_result run_pipeline(PolygonMesh& pmesh, const NamedParameters& np)
   // duplicate face and no non-manifold vertex goes out.
   const bool valid_ok = run_step(8, [&]() {
     // the structure was checked on entry; only the steps above edited it since
-    r.validity = ensure_valid_mesh(pmesh, np, false);
+    r.validity = ensure_valid_mesh_with(ops, np, false);
     Step_outcome o;
     o.status = r.validity.status;
     o.changes = r.validity.operations + r.validity.duplicate_faces_removed +
                 r.validity.non_manifold_vertices_split;
-    o.faces_removed = r.validity.faces_removed();
     r.validity.to_report(o.report);
     return o;
   });

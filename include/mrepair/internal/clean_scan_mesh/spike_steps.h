@@ -32,7 +32,6 @@ struct Step_outcome
   bool available = true;
   Status status = Status::ok;
   std::size_t changes = 0;  // elements changed (moved, removed, collapsed)
-  std::size_t faces_removed = 0, faces_added = 0;  // by the step's own counters
   Report report;
 };
 
@@ -104,7 +103,6 @@ public:
         remove_unrelaxable_spikes_with(ops_, stats(), spike_settings_, vis, tracker_.get());
     o.status = r.status;
     o.changes = r.faces_removed + r.dangling_faces_removed;
-    o.faces_removed = r.faces_removed + r.dangling_faces_removed;
     r.to_report(o.report);
     return o;
   }
@@ -120,7 +118,6 @@ public:
         repair_near_degenerate_faces_with(ops_, stats(), s, vis);
     o.status = r.status;
     o.changes = r.edges_collapsed + r.edges_flipped;
-    o.faces_removed = r.faces_before - r.faces_after;
     r.to_report(o.report);
     return o;
   }
