@@ -63,6 +63,13 @@ inline Vec3 cross(const Vec3& a, const Vec3& b)
 {
   return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
 }
+/// the term of edge (p, q) in Newell's normal of a polygon (the sum over its
+/// edges: twice its vector area), for polygons that need not be triangles
+/// nor planar.
+inline Vec3 newell_term(const Vec3& p, const Vec3& q)
+{
+  return {{(p[1] - q[1]) * (p[2] + q[2]), (p[2] - q[2]) * (p[0] + q[0]), (p[0] - q[0]) * (p[1] + q[1])}};
+}
 /// the normal of triangle (a, b, c), not normalised (twice its area): the one
 /// formula every user shares, with `a` as the corner the two edges leave
 /// from (the rounding depends on which corner that is)

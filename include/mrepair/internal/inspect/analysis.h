@@ -347,16 +347,15 @@ private:
           }
         } else {
           // Newell normal: twice the vector area of a (possibly non-planar) polygon
-          const double* p0 = a_.point(v[0]);
+          const Vec3 p0 = load_vec3(a_.point(v[0]));
+          Vec3 nf{{0, 0, 0}};
           for (std::size_t i = 0; i < k; ++i) {
-            const double *p = a_.point(v[i]), *q = a_.point(v[(i + 1) % k]);
-            n[0] += (p[1] - q[1]) * (p[2] + q[2]);
-            n[1] += (p[2] - q[2]) * (p[0] + q[0]);
-            n[2] += (p[0] - q[0]) * (p[1] + q[1]);
-            if (i >= 1 && i + 1 < k)
-              s.volume += dot(load_vec3(p0), cross(load_vec3(p), load_vec3(q))) / 6.0;
+            const Vec3 p = load_vec3(a_.point(v[i])), q = load_vec3(a_.point(v[(i + 1) % k]));
+            nf += newell_term(p, q);
+            if (i >= 1 && i + 1 < k) s.volume += dot(p0, cross(p, q)) / 6.0;
           }
-          s.area += 0.5 * norm(load_vec3(n));
+          std::copy(nf.begin(), nf.end(), n);
+          s.area += 0.5 * norm(nf);
           if (!repeated_[f]) {
             poly.clear();
             for (std::size_t i = 0; i < k; ++i) {
@@ -794,18 +793,15 @@ private:
           const std::size_t e = seg_edge[static_cast<std::size_t>(id - segs.cbegin())];
           const Inspect_index v0 = a_.edge_v[2 * e], v1 = a_.edge_v[2 * e + 1];
           if (v0 == v || v1 == v) continue;
-          const double *x = a_.point(v0), *y = a_.point(v1);
-          const double d[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
-          const double w[3] = {p[0] - x[0], p[1] - x[1], p[2] - x[2]};
-          const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+          const Vec3 x = load_vec3(a_.point(v0)), y = load_vec3(a_.point(v1)), pv = load_vec3(p);
+          const Vec3 d = sub(y, x), w = sub(pv, x);
+          const double dd = squared_norm(d);
           if (dd == 0) continue;
-          const double tpar = (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd;
+          const double tpar = dot(w, d) / dd;
           if (tpar <= 0 || tpar >= 1) continue;
-          const double r[3] = {w[0] - tpar * d[0], w[1] - tpar * d[1], w[2] - tpar * d[2]};
-          const double u[3] = {p[0] - y[0], p[1] - y[1], p[2] - y[2]};
-          if (r[0] * r[0] + r[1] * r[1] + r[2] * r[2] > tol2) continue;
-          if (w[0] * w[0] + w[1] * w[1] + w[2] * w[2] <= tol2) continue;
-          if (u[0] * u[0] + u[1] * u[1] + u[2] * u[2] <= tol2) continue;
+          if (squared_norm(sub(w, mul(d, tpar))) > tol2) continue;
+          if (squared_norm(w) <= tol2) continue;
+          if (squared_norm(sub(pv, y)) <= tol2) continue;
           ++s;
           break;
         }
