@@ -253,33 +253,21 @@ Scan_cleaning_result run_pipeline(PolygonMesh& pmesh, const NamedParameters& np)
         run_step(3, [&]() {
           Boundary_cleaning_result b = clean_boundaries_with(ops, boundary_settings, fwd);
           add_totals(r.boundaries, b);
-          Step_outcome o;
-          o.status = b.status;
-          o.changes = b.faces_removed + b.component_faces_removed;
-          b.to_report(o.report);
-          return o;
+          return step_outcome(b, b.faces_removed + b.component_faces_removed);
         }) &&
         run_step(4, [&]() {
           Small_components_result c = remove_small_components_seeded(
               ops, faces(pmesh), min_comp, relative_comp, static_cast<const std::nullptr_t*>(nullptr),
               cad);
           add_totals(r.components, c);
-          Step_outcome o;
-          o.status = c.status;
-          o.changes = c.faces_removed;
-          c.to_report(o.report);
-          return o;
+          return step_outcome(c, c.faces_removed);
         }) &&
         run_step(5, [&]() {
           Small_hole_filler<PolygonMesh, VPM> filler(ops, hole_settings);
           filler.result.status = filler.run(fwd);
           const Hole_filling_result& h = filler.result;
           add_totals(r.holes, h);
-          Step_outcome o;
-          o.status = h.status;
-          o.changes = h.holes_filled + h.enlargement_faces_removed;
-          h.to_report(o.report);
-          return o;
+          return step_outcome(h, h.holes_filled + h.enlargement_faces_removed);
         }) &&
         run_step(6, [&]() { return spikes->fix_near_degenerate(fwd); }) &&
         run_step(7, [&]() { return spikes->relax(fwd); });
@@ -307,12 +295,8 @@ Scan_cleaning_result run_pipeline(PolygonMesh& pmesh, const NamedParameters& np)
   const bool valid_ok = run_step(8, [&]() {
     // the structure was checked on entry; only the steps above edited it since
     r.validity = ensure_valid_mesh_with(ops, np, false);
-    Step_outcome o;
-    o.status = r.validity.status;
-    o.changes = r.validity.operations + r.validity.duplicate_faces_removed +
-                r.validity.non_manifold_vertices_split;
-    r.validity.to_report(o.report);
-    return o;
+    return step_outcome(r.validity, r.validity.operations + r.validity.duplicate_faces_removed +
+                                        r.validity.non_manifold_vertices_split);
   });
   (void)valid_ok;
   // relax_spikes (step 1) is expected to leave unrelaxable spikes to step 2
