@@ -6,8 +6,9 @@
 // triangle of the bottom row removed), with an ear hanging into a square hole
 // and a face folded back over the top border.
 #include <mrepair/clean_boundaries.h>
-#include <mrepair/io.h>
 #include <mrepair/triangulate_polygons.h>
+
+#include "example_io.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -24,11 +25,7 @@ int main(int argc, char** argv)
 {
   Mesh mesh;
   if (argc > 1) {
-    mrepair::Io_result io = mrepair::read_polygon_mesh(argv[1], mesh);
-    if (!mrepair::succeeded(io.status)) {
-      std::cerr << "cannot read " << argv[1] << ": " << io.message << "\n";
-      return 1;
-    }
+    if (!read_mesh(argv[1], mesh)) return 1;
     mrepair::triangulate_polygons(mesh);  // the algorithm expects triangles
   } else {
     // make_grid: vertex (i, j) is j * 31 + i; quad (i, j) gives the faces
@@ -57,11 +54,7 @@ int main(int argc, char** argv)
   if (!mrepair::succeeded(r.status)) return 1;
   if (argc > 2) {
     mesh.collect_garbage();
-    mrepair::Io_result out = mrepair::write_polygon_mesh(argv[2], mesh);
-    if (!mrepair::succeeded(out.status)) {
-      std::cerr << "cannot write " << argv[2] << ": " << out.message << "\n";
-      return 1;
-    }
+    if (!write_mesh(argv[2], mesh)) return 1;
   }
   return 0;
 }

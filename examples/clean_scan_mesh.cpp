@@ -13,6 +13,8 @@
 #include <mrepair/remove_small_components.h>
 #include <mrepair/triangulate_polygons.h>
 
+#include "example_io.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
@@ -75,13 +77,7 @@ int main(int argc, char** argv)
     return 1;
   }
 
-  if (argc > 2) {
-    mrepair::Io_result out = mrepair::write_polygon_mesh(argv[2], mesh);
-    if (!mrepair::succeeded(out.status)) {
-      std::cerr << "cannot write " << argv[2] << ": " << out.message << "\n";
-      return 1;
-    }
-  }
+  if (argc > 2 && !write_mesh(argv[2], mesh)) return 1;
 
   // The steps are public functions too; on the cleaned mesh they find nothing left.
   mrepair::Small_components_result c = mrepair::remove_small_components(mesh);

@@ -4,7 +4,8 @@
 // Without INPUT: two grid patches 1% apart, the right one twice as fine along the seam
 // (T-junctions), and a third one 5% away (a slot that must stay open).
 #include <mrepair/close_gaps.h>
-#include <mrepair/io.h>
+
+#include "example_io.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <mrepair/triangulate_polygons.h>
@@ -44,11 +45,7 @@ int main(int argc, char** argv)
   Mesh mesh;
   double tolerance = 0.005;  // relative to the bounding-box diagonal
   if (argc > 1) {
-    mrepair::Io_result io = mrepair::read_polygon_mesh(argv[1], mesh);
-    if (!mrepair::succeeded(io.status)) {
-      std::cerr << "cannot read " << argv[1] << ": " << io.message << "\n";
-      return 1;
-    }
+    if (!read_mesh(argv[1], mesh)) return 1;
     mrepair::triangulate_polygons(mesh);  // ear clipping: ends on any polygon
     if (argc > 3) tolerance = std::atof(argv[3]);
   } else {
@@ -88,11 +85,7 @@ int main(int argc, char** argv)
   if (!mrepair::succeeded(r.status)) return 1;
   if (argc > 2) {
     mesh.collect_garbage();
-    mrepair::Io_result out = mrepair::write_polygon_mesh(argv[2], mesh);
-    if (!mrepair::succeeded(out.status)) {
-      std::cerr << "cannot write " << argv[2] << ": " << out.message << "\n";
-      return 1;
-    }
+    if (!write_mesh(argv[2], mesh)) return 1;
   }
   return 0;
 }

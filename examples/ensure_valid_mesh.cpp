@@ -7,8 +7,9 @@
 // triangle pinched to the grid at one corner (a non-manifold vertex), and a
 // detached two-face pillow (a duplicate pair).
 #include <mrepair/ensure_valid_mesh.h>
-#include <mrepair/io.h>
 #include <mrepair/triangulate_polygons.h>
+
+#include "example_io.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -25,11 +26,7 @@ int main(int argc, char** argv)
 {
   Mesh mesh;
   if (argc > 1) {
-    mrepair::Io_result io = mrepair::read_polygon_mesh(argv[1], mesh);
-    if (!mrepair::succeeded(io.status)) {
-      std::cerr << "cannot read " << argv[1] << ": " << io.message << "\n";
-      return 1;
-    }
+    if (!read_mesh(argv[1], mesh)) return 1;
     mrepair::triangulate_polygons(mesh);  // the algorithm expects triangles
   } else {
     // make_grid: vertex (i, j) is j * 11 + i; the diagonals join (i+1, j) to (i, j+1)
@@ -58,11 +55,7 @@ int main(int argc, char** argv)
   }
   if (argc > 2) {
     mesh.collect_garbage();
-    mrepair::Io_result out = mrepair::write_polygon_mesh(argv[2], mesh);
-    if (!mrepair::succeeded(out.status)) {
-      std::cerr << "cannot write " << argv[2] << ": " << out.message << "\n";
-      return 1;
-    }
+    if (!write_mesh(argv[2], mesh)) return 1;
   }
   return 0;
 }

@@ -5,7 +5,8 @@
 // Without INPUT: a noisy bumpy 40x40 grid (a scan), the same grid flat (a
 // tessellated plane: CAD), and the flat grid again with the profile forced.
 #include <mrepair/input_profile.h>
-#include <mrepair/io.h>
+
+#include "example_io.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -28,11 +29,7 @@ int main(int argc, char** argv)
 {
   if (argc > 1) {
     Mesh mesh;
-    mrepair::Io_result io = mrepair::read_polygon_mesh(argv[1], mesh);
-    if (!mrepair::succeeded(io.status)) {
-      std::cerr << "cannot read " << argv[1] << ": " << io.message << "\n";
-      return 1;
-    }
+    if (!read_mesh(argv[1], mesh)) return 1;
     mrepair::Input_classification c = mrepair::classify_input(mesh);
     mrepair::Report report;
     c.to_report(report);

@@ -2,8 +2,9 @@
 // Relaxes spikes and foldovers, then removes the spikes that do not relax.
 // usage: example_relax_spikes [INPUT [OUTPUT]]
 // Without INPUT: a 20x20 grid with a tall narrow spike (6 edge lengths) and a foldover.
-#include <mrepair/io.h>
 #include <mrepair/relax_spikes.h>
+
+#include "example_io.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -18,11 +19,7 @@ int main(int argc, char** argv)
 {
   Mesh mesh;
   if (argc > 1) {
-    mrepair::Io_result io = mrepair::read_polygon_mesh(argv[1], mesh);
-    if (!mrepair::succeeded(io.status)) {
-      std::cerr << "cannot read " << argv[1] << ": " << io.message << "\n";
-      return 1;
-    }
+    if (!read_mesh(argv[1], mesh)) return 1;
   } else {
     CGAL::make_grid(20, 20, mesh, [](int i, int j) { return K::Point_3(i, j, 0); }, true);
     mesh.point(Mesh::Vertex_index(5 * 21 + 5)) = K::Point_3(5, 5, 6);      // tall spike
@@ -42,11 +39,7 @@ int main(int argc, char** argv)
   std::cout << report.to_text();
   if (argc > 2) {
     mesh.collect_garbage();
-    mrepair::Io_result out = mrepair::write_polygon_mesh(argv[2], mesh);
-    if (!mrepair::succeeded(out.status)) {
-      std::cerr << "cannot write " << argv[2] << ": " << out.message << "\n";
-      return 1;
-    }
+    if (!write_mesh(argv[2], mesh)) return 1;
   }
   return 0;
 }

@@ -8,8 +8,9 @@
 // Without INPUT: a 30x30 grid (1800 faces), a tetrahedron and a 2x2 patch
 // floating above it (debris), a 6x6 patch of 72 faces, coarse and large (kept:
 // not small next to the grid), and an 8x8 patch of 128 faces (kept: big enough).
-#include <mrepair/io.h>
 #include <mrepair/remove_small_components.h>
+
+#include "example_io.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polyhedron_3.h>
@@ -32,11 +33,7 @@ int main(int argc, char** argv)
 {
   Mesh mesh;
   if (argc > 1) {
-    mrepair::Io_result io = mrepair::read_polygon_mesh(argv[1], mesh);
-    if (!mrepair::succeeded(io.status)) {
-      std::cerr << "cannot read " << argv[1] << ": " << io.message << "\n";
-      return 1;
-    }
+    if (!read_mesh(argv[1], mesh)) return 1;
   } else {
     add_patch(mesh, 30, 1.0, 0, 0, 0);
     CGAL::make_tetrahedron(Point(5, 5, 2), Point(6, 5, 2), Point(5, 6, 2), Point(5, 5, 3), mesh);
@@ -55,12 +52,6 @@ int main(int argc, char** argv)
   std::cout << report.to_text();
   std::cout << "faces: " << faces_before << " -> " << faces(mesh).size() << "\n";
   if (!mrepair::succeeded(r.status)) return 1;
-  if (argc > 2) {
-    mrepair::Io_result out = mrepair::write_polygon_mesh(argv[2], mesh);
-    if (!mrepair::succeeded(out.status)) {
-      std::cerr << "cannot write " << argv[2] << ": " << out.message << "\n";
-      return 1;
-    }
-  }
+  if (argc > 2 && !write_mesh(argv[2], mesh)) return 1;
   return 0;
 }

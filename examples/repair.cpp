@@ -11,6 +11,8 @@
 #include <mrepair/io.h>
 #include <mrepair/repair.h>
 
+#include "example_io.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 
@@ -95,12 +97,6 @@ int main(int argc, char** argv)
     if (x.second) std::cout << "  added   " << x.second << " (" << x.first << ")\n";
   std::cout << "  reconciles: " << (r.faces_reconcile() ? "yes" : "no") << "\n";
 
-  if (argc > 2) {
-    const mrepair::Io_result out = mrepair::write_polygon_mesh(argv[2], mesh);
-    if (!mrepair::succeeded(out.status)) {
-      std::cerr << "cannot write " << argv[2] << ": " << out.message << "\n";
-      return 1;
-    }
-  }
+  if (argc > 2 && !write_mesh(argv[2], mesh)) return 1;
   return mrepair::succeeded(r.status) && r.faces_reconcile() ? 0 : 1;
 }

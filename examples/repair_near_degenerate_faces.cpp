@@ -2,8 +2,9 @@
 // Removes needles and caps from a triangle mesh by safe edge collapses.
 // usage: example_repair_near_degenerate_faces [INPUT [OUTPUT]]
 // Without INPUT: a 20x20 grid with a sliver pair (a vertex 0.01 from another).
-#include <mrepair/io.h>
 #include <mrepair/repair_near_degenerate_faces.h>
+
+#include "example_io.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -18,11 +19,7 @@ int main(int argc, char** argv)
 {
   Mesh mesh;
   if (argc > 1) {
-    mrepair::Io_result io = mrepair::read_polygon_mesh(argv[1], mesh);
-    if (!mrepair::succeeded(io.status)) {
-      std::cerr << "cannot read " << argv[1] << ": " << io.message << "\n";
-      return 1;
-    }
+    if (!read_mesh(argv[1], mesh)) return 1;
   } else {
     CGAL::make_grid(20, 20, mesh, [](int i, int j) { return K::Point_3(i, j, 0); }, true);
     // move a vertex next to its neighbour: the faces around that edge become needles
@@ -38,11 +35,7 @@ int main(int argc, char** argv)
   if (!mrepair::succeeded(r.status)) return 1;
   if (argc > 2) {
     mesh.collect_garbage();
-    mrepair::Io_result out = mrepair::write_polygon_mesh(argv[2], mesh);
-    if (!mrepair::succeeded(out.status)) {
-      std::cerr << "cannot write " << argv[2] << ": " << out.message << "\n";
-      return 1;
-    }
+    if (!write_mesh(argv[2], mesh)) return 1;
   }
   return 0;
 }

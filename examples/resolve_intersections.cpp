@@ -4,8 +4,9 @@
 // usage: example_resolve_intersections [INPUT [OUTPUT]]
 // Without INPUT: two unit cubes, the second shifted by half a unit along
 // every axis, so that each passes through the other.
-#include <mrepair/io.h>
 #include <mrepair/resolve_intersections.h>
+
+#include "example_io.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -21,11 +22,7 @@ int main(int argc, char** argv)
 {
   Mesh mesh;
   if (argc > 1) {
-    mrepair::Io_result io = mrepair::read_polygon_mesh(argv[1], mesh);
-    if (!mrepair::succeeded(io.status)) {
-      std::cerr << "cannot read " << argv[1] << ": " << io.message << "\n";
-      return 1;
-    }
+    if (!read_mesh(argv[1], mesh)) return 1;
   } else {
     for (double o : {0.0, 0.5}) {
       Mesh cube;
@@ -46,11 +43,7 @@ int main(int argc, char** argv)
   if (!mrepair::succeeded(r.status)) return 1;
   if (argc > 2) {
     mesh.collect_garbage();
-    mrepair::Io_result out = mrepair::write_polygon_mesh(argv[2], mesh);
-    if (!mrepair::succeeded(out.status)) {
-      std::cerr << "cannot write " << argv[2] << ": " << out.message << "\n";
-      return 1;
-    }
+    if (!write_mesh(argv[2], mesh)) return 1;
   }
   return 0;
 }

@@ -5,8 +5,9 @@
 // usage: example_triangulate_polygons [INPUT [OUTPUT]]
 // Without INPUT: a closed L-shaped prism (two non-convex hexagons and six
 // quads) and a 4x3 grid of quads beside it.
-#include <mrepair/io.h>
 #include <mrepair/triangulate_polygons.h>
+
+#include "example_io.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -24,11 +25,7 @@ int main(int argc, char** argv)
 {
   Mesh mesh;
   if (argc > 1) {
-    mrepair::Io_result io = mrepair::read_polygon_mesh(argv[1], mesh);
-    if (!mrepair::succeeded(io.status)) {
-      std::cerr << "cannot read " << argv[1] << ": " << io.message << "\n";
-      return 1;
-    }
+    if (!read_mesh(argv[1], mesh)) return 1;
   } else {
     const double L[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};  // counterclockwise
     std::vector<Mesh::Vertex_index> bottom, top;
@@ -51,12 +48,6 @@ int main(int argc, char** argv)
     std::cerr << "triangulate_polygons: " << r.message << "\n";
     return 1;
   }
-  if (argc > 2) {
-    mrepair::Io_result out = mrepair::write_polygon_mesh(argv[2], mesh);
-    if (!mrepair::succeeded(out.status)) {
-      std::cerr << "cannot write " << argv[2] << ": " << out.message << "\n";
-      return 1;
-    }
-  }
+  if (argc > 2 && !write_mesh(argv[2], mesh)) return 1;
   return 0;
 }

@@ -581,29 +581,31 @@ TEST(Remesh_armadillo, coarse_remeshing_keeps_no_self_intersections)
 TEST(Remesh_issue_17, reference_tree_built_on_first_use_gives_the_closest_point)
 {
   namespace R = mrepair::internal::remesh;
+  namespace I = mrepair::internal;
+  using I::Vec3;
   const Soup s = icosphere(3, 1.0);
   R::Reference_surface ref;
-  for (const Point& p : s.points) ref.points.emplace_back(p.x(), p.y(), p.z());
+  for (const Point& p : s.points) ref.points.push_back(I::to_vec3(p));
   for (const Polygon& f : s.polygons) ref.triangles.push_back({int(f[0]), int(f[1]), int(f[2])});
   ref.on_line.assign(ref.points.size(), 0);
   ref.sizing.assign(ref.points.size(), 0.1);
   ref.build();
   ASSERT_TRUE(ref.has_surface());
-  auto nearest = [&](const R::Vec3& q) {
+  auto nearest = [&](const Vec3& q) {
     double best = std::numeric_limits<double>::infinity();
     for (const auto& t : ref.triangles) {
       double u, v, w;
-      const R::Vec3 p = R::Reference_surface::closest_on_triangle(q, ref.points[t[0]], ref.points[t[1]],
-                                                                 ref.points[t[2]], u, v, w);
-      best = std::min(best, R::sqlen(p - q));
+      const Vec3 p = R::Reference_surface::closest_on_triangle(q, ref.points[t[0]], ref.points[t[1]],
+                                                             ref.points[t[2]], u, v, w);
+      best = std::min(best, I::squared_norm(I::sub(p, q)));
     }
     return std::sqrt(best);
   };
   const std::size_t n = 4000;
-  std::vector<R::Vec3> q(n), by_tree(n), by_descent(n);
+  std::vector<Vec3> q(n), by_tree(n), by_descent(n);
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> u(-1.5, 1.5);
-  for (R::Vec3& x : q) x = R::Vec3(u(rng), u(rng), u(rng));
+  for (Vec3& x : q) x = Vec3{{u(rng), u(rng), u(rng)}};
   // concurrent first uses of the tree: no hint, and a descent from a far
   // triangle with a tiny accepted distance
   mrepair::internal::parallel_for_index(n, 16, [&](std::size_t i) {
@@ -617,7 +619,7 @@ TEST(Remesh_issue_17, reference_tree_built_on_first_use_gives_the_closest_point)
   });
   for (std::size_t i = 0; i < n; ++i) {
     const double d = nearest(q[i]);
-    EXPECT_NEAR(R::len(by_tree[i] - q[i]), d, 1e-9) << i;
-    EXPECT_NEAR(R::len(by_descent[i] - q[i]), d, 1e-9) << i;
+    EXPECT_NEAR(I::distance(by_tree[i], q[i]), d, 1e-9) << i;
+    EXPECT_NEAR(I::distance(by_descent[i], q[i]), d, 1e-9) << i;
   }
 }

@@ -66,7 +66,7 @@ struct Clean_step_stats
   bool available = true;   ///< false when the step's implementation is not built in
   std::size_t runs = 0;
   std::size_t changes = 0; ///< elements moved, removed, collapsed or added
-  std::size_t faces_removed = 0;  ///< by the step's own counters
+  std::size_t faces_removed = 0;  ///< as the local operations counted the step's edits
   std::size_t faces_added = 0;
   double seconds = 0;
   Status last_status = Status::ok;

@@ -48,13 +48,7 @@ bool clip_ears(const std::vector<Vec3>& p, const std::vector<Id>& id, const Allo
   const std::size_t m = p.size();
   if (m < 3) return false;
   Vec3 nrm{{0, 0, 0}};
-  for (std::size_t i = 0; i < m; ++i) {
-    const Vec3& c = p[i];
-    const Vec3& d = p[(i + 1) % m];
-    nrm[0] += (c[1] - d[1]) * (c[2] + d[2]);
-    nrm[1] += (c[2] - d[2]) * (c[0] + d[0]);
-    nrm[2] += (c[0] - d[0]) * (c[1] + d[1]);
-  }
+  for (std::size_t i = 0; i < m; ++i) nrm += newell_term(p[i], p[(i + 1) % m]);
   int axis = 0;
   for (int k = 1; k < 3; ++k)
     if (std::abs(nrm[k]) > std::abs(nrm[axis])) axis = k;

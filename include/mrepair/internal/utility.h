@@ -49,10 +49,26 @@ inline Vec3 sub(const Vec3& a, const Vec3& b) { return {{a[0] - b[0], a[1] - b[1
 inline Vec3 add(const Vec3& a, const Vec3& b) { return {{a[0] + b[0], a[1] + b[1], a[2] + b[2]}}; }
 inline Vec3 mul(const Vec3& a, double s) { return {{a[0] * s, a[1] * s, a[2] * s}}; }
 inline Vec3 neg(const Vec3& a) { return {{-a[0], -a[1], -a[2]}}; }
+// The same four as operators, for formulas that read better with them (the
+// remesher's). Found by ordinary lookup from code inside mrepair::internal.
+inline Vec3 operator+(const Vec3& a, const Vec3& b) { return add(a, b); }
+inline Vec3 operator-(const Vec3& a, const Vec3& b) { return sub(a, b); }
+inline Vec3 operator*(const Vec3& a, double s) { return mul(a, s); }
+inline Vec3 operator*(double s, const Vec3& a) { return mul(a, s); }
+inline Vec3& operator+=(Vec3& a, const Vec3& b) { return a = add(a, b); }
+inline Vec3& operator-=(Vec3& a, const Vec3& b) { return a = sub(a, b); }
+inline Vec3& operator*=(Vec3& a, double s) { return a = mul(a, s); }
 inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 inline Vec3 cross(const Vec3& a, const Vec3& b)
 {
   return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
+}
+/// the term of edge (p, q) in Newell's normal of a polygon (the sum over its
+/// edges: twice its vector area), for polygons that need not be triangles
+/// nor planar.
+inline Vec3 newell_term(const Vec3& p, const Vec3& q)
+{
+  return {{(p[1] - q[1]) * (p[2] + q[2]), (p[2] - q[2]) * (p[0] + q[0]), (p[0] - q[0]) * (p[1] + q[1])}};
 }
 /// the normal of triangle (a, b, c), not normalised (twice its area): the one
 /// formula every user shares, with `a` as the corner the two edges leave
@@ -78,6 +94,9 @@ inline Vec3 normalized(const Vec3& a)
 /// angle between two vectors in [0, pi]; the atan2 form stays accurate near 0
 /// and pi, where acos of a dot product loses half its digits. 0 if one is zero.
 inline double angle(const Vec3& a, const Vec3& b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
+
+/// three doubles in a row (flat coordinate arrays) as a vector.
+inline Vec3 load_vec3(const double* p) { return {{p[0], p[1], p[2]}}; }
 
 /// any point type with x(), y(), z() (any kernel, exact ones included) in doubles.
 template <typename Point>

@@ -80,7 +80,6 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
   using vertex_descriptor = typename GT::vertex_descriptor;
   using edge_descriptor = typename GT::edge_descriptor;
   using face_descriptor = typename GT::face_descriptor;
-  using remesh::Vec3;
   auto fail = [&](Status s, const std::string& m) { return refuse_remeshing(res, s, m); };
 
   // ---- part selection
@@ -97,21 +96,17 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
   // ---- features
   const double cos_feature = o.feature_angle > 0 && o.feature_angle < 180
                                  ? std::cos(o.feature_angle * pi / 180.) : 2.;
-  auto pt = [&](vertex_descriptor v) {
-    const auto& p = get(vpm, v);
-    return Vec3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-  };
   auto fnormal = [&](typename GT::halfedge_descriptor h) {
-    Vec3 a = pt(source(h, tm)), b = pt(target(h, tm)), c = pt(target(next(h, tm), tm));
-    return remesh::cross(b - a, c - a);
+    return triangle_normal(point(vpm, source(h, tm)), point(vpm, target(h, tm)),
+                           point(vpm, target(next(h, tm), tm)));
   };
   auto is_feature = [&](edge_descriptor e) {
     if (o.has_ecm && get(ecm, e)) return true;
     if (cos_feature > 1.) return false;
     auto h = halfedge(e, tm);
     Vec3 n1 = fnormal(h), n2 = fnormal(opposite(h, tm));
-    double l = remesh::len(n1) * remesh::len(n2);
-    return l > 0 && remesh::dot(n1, n2) < cos_feature * l;
+    double l = norm(n1) * norm(n2);
+    return l > 0 && dot(n1, n2) < cos_feature * l;
   };
   auto is_fixed = [&](vertex_descriptor v) { return bool(get(vcm, v)); };
 
@@ -144,8 +139,7 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
       double area = 0;
       const auto& rf = R.reference();
       for (const auto& t : rf.triangles)
-        area += 0.5 * remesh::len(remesh::cross(rf.points[t[1]] - rf.points[t[0]],
-                                                rf.points[t[2]] - rf.points[t[0]]));
+        area += 0.5 * norm(triangle_normal(rf.points[t[0]], rf.points[t[1]], rf.points[t[2]]));
       const double N = value;
       res.target_faces = static_cast<std::size_t>(N);
       double L = std::sqrt(4. * area / (std::sqrt(3.) * N));
@@ -154,7 +148,7 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
       double perimeters = 0;
       for (const auto& t : rf.triangles)
         for (int k = 0; k < 3; ++k)
-          perimeters += remesh::len(rf.points[t[(k + 1) % 3]] - rf.points[t[k]]);
+          perimeters += norm(rf.points[t[(k + 1) % 3]] - rf.points[t[k]]);
       L = std::max(L, perimeters / (200. * N));
       const std::size_t outside = whole ? 0 : res.faces_before - rf.triangles.size();
       // Surfaces far thinner than L in one direction (a stray far vertex) make

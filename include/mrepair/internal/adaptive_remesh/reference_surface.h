@@ -24,27 +24,7 @@ namespace mrepair {
 namespace internal {
 namespace remesh {
 
-/// plain double vector; all constructions of the remesher use it.
-struct Vec3
-{
-  double x = 0, y = 0, z = 0;
-  Vec3() = default;
-  Vec3(double a, double b, double c) : x(a), y(b), z(c) {}
-  Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
-  Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-  Vec3& operator*=(double s) { x *= s; y *= s; z *= s; return *this; }
-};
-inline Vec3 operator+(Vec3 a, const Vec3& b) { return a += b; }
-inline Vec3 operator-(Vec3 a, const Vec3& b) { return a -= b; }
-inline Vec3 operator*(Vec3 a, double s) { return a *= s; }
-inline Vec3 operator*(double s, Vec3 a) { return a *= s; }
-inline double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline Vec3 cross(const Vec3& a, const Vec3& b)
-{
-  return Vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-}
-inline double sqlen(const Vec3& a) { return dot(a, a); }
-inline double len(const Vec3& a) { return std::sqrt(dot(a, a)); }
+// Positions are `Vec3` (internal/utility.h), as everywhere in the library.
 
 class Reference_surface
 {
@@ -68,8 +48,8 @@ class Reference_surface
   mutable std::mutex tri_tree_mutex_;
   std::unique_ptr<Seg_tree> seg_tree_;
 
-  static K::Point_3 kp(const Vec3& p) { return K::Point_3(p.x, p.y, p.z); }
-  static Vec3 vp(const K::Point_3& p) { return Vec3(p.x(), p.y(), p.z()); }
+  static K::Point_3 kp(const Vec3& p) { return K::Point_3(p[0], p[1], p[2]); }
+  static Vec3 vp(const K::Point_3& p) { return to_vec3(p); }
 
 public:
   std::vector<Vec3> points;
@@ -106,9 +86,8 @@ public:
     prim_of_tri_.assign(triangles.size(), -1);
     for (std::size_t i = 0; i < triangles.size(); ++i) {
       const auto& t = triangles[i];
-      const Vec3& a = points[t[0]];
-      const Vec3 n = cross(points[t[1]] - a, points[t[2]] - a);
-      if (!(sqlen(n) > tiny)) continue;
+      const Vec3 n = triangle_normal(points[t[0]], points[t[1]], points[t[2]]);
+      if (!(squared_norm(n) > tiny)) continue;
       prim_of_tri_[i] = static_cast<int>(tri_geo_.size());
       tri_of_prim_.push_back(static_cast<int>(i));
       tri_geo_.emplace_back(kp(points[t[0]]), kp(points[t[1]]), kp(points[t[2]]));
@@ -118,7 +97,7 @@ public:
     prim_of_seg_.assign(segments.size(), -1);
     for (std::size_t i = 0; i < segments.size(); ++i) {
       const auto& sg = segments[i];
-      if (!(sqlen(points[sg[1]] - points[sg[0]]) > tiny)) continue;
+      if (!(squared_norm(points[sg[1]] - points[sg[0]]) > tiny)) continue;
       prim_of_seg_[i] = static_cast<int>(seg_geo_.size());
       seg_of_prim_.push_back(static_cast<int>(i));
       seg_geo_.emplace_back(kp(points[sg[0]]), kp(points[sg[1]]));
@@ -201,7 +180,7 @@ public:
     if (hint >= 0 && hint < int(triangles.size())) {
       int cur = hint, best = -1;
       double bd = std::numeric_limits<double>::infinity(), bu = 0, bv = 0, bw = 0;
-      Vec3 bp;
+      Vec3 bp{};
       // Points whose star has been evaluated: a triangle with such a corner
       // was evaluated already, and evaluating it again never changes the
       // strict minimum (neighbouring stars overlap in most of their triangles).
@@ -223,7 +202,7 @@ public:
             if (is_done(tr[0]) || is_done(tr[1]) || is_done(tr[2])) continue;
             double u, v, w;
             Vec3 p = closest_on_triangle(q, points[tr[0]], points[tr[1]], points[tr[2]], u, v, w);
-            double d = sqlen(p - q);
+            double d = squared_norm(p - q);
             if (d < bd) { bd = d; best = t; bp = p; bu = u; bv = v; bw = w; }
           }
           if (ndone < 48) done[ndone++] = pv;  // when full, stars are evaluated again
@@ -283,7 +262,7 @@ public:
     Vec3 p = vp(pp.first);
     const auto& s = segments[i];
     Vec3 d = points[s[1]] - points[s[0]];
-    double l2 = sqlen(d);
+    double l2 = squared_norm(d);
     double t = l2 > 0 ? std::clamp(dot(p - points[s[0]], d) / l2, 0., 1.) : 0.5;
     size = (1 - t) * sizing[s[0]] + t * sizing[s[1]];
     return p;
@@ -302,13 +281,13 @@ public:
     std::vector<double> area(n, 0.), angle(n, 0.);
     for (const auto& t : triangles) {
       const Vec3* p[3] = {&points[t[0]], &points[t[1]], &points[t[2]]};
-      double a2 = len(cross(*p[1] - *p[0], *p[2] - *p[0]));
+      double a2 = norm(triangle_normal(*p[0], *p[1], *p[2]));
       if (!(a2 > 0)) continue;
       for (int k = 0; k < 3; ++k) {
         int i = t[k], j = t[(k + 1) % 3], l = t[(k + 2) % 3];
         Vec3 e1 = points[j] - points[i], e2 = points[l] - points[i];
         double c = dot(e1, e2);
-        double s = len(cross(e1, e2));
+        double s = norm(cross(e1, e2));
         angle[i] += std::atan2(s, c);
         area[i] += a2 / 6.;
         // the angle at i is opposite edge (j,l): cot weight for that edge
@@ -320,7 +299,7 @@ public:
     std::vector<double> kappa(n, 0.);
     for (std::size_t i = 0; i < n; ++i) {
       if (!(area[i] > 0)) continue;
-      double H = len(lap[i]) / (4. * area[i]);  // |Delta p| / 2 with Delta p = lap / (2A)
+      double H = norm(lap[i]) / (4. * area[i]);  // |Delta p| / 2 with Delta p = lap / (2A)
       double K = (two_pi - angle[i]) / area[i];
       kappa[i] = std::abs(H) + std::sqrt(std::max(H * H - K, 0.));
     }

@@ -140,7 +140,7 @@ public:
   {
     for (vertex_descriptor v : vertices(tm_)) {
       const Point& p = get(vpm_, v);
-      put(pos_, v, Vec3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())));
+      put(pos_, v, to_vec3(p));
       put(size_, v, L_);
       put(kind_, v, char(V_FREE));
       put(bnd_, v, char(0));
@@ -225,7 +225,7 @@ public:
   // a line vertex where its line turns by more than the feature angle is a corner
   bool sharp_turn(vertex_descriptor v, double cos_turn) const
   {
-    Vec3 d[2];
+    Vec3 d[2]{};
     int k = 0;
     const Vec3 pv = get(pos_, v);
     for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
@@ -234,7 +234,7 @@ public:
     }
     if (k != 2) return true;
     // d[0] points into v, -d[1] out of it: turning angle between them
-    double l = len(d[0]) * len(d[1]);
+    double l = norm(d[0]) * norm(d[1]);
     return !(l > 0) || -dot(d[0], d[1]) < cos_turn * l;
   }
 
@@ -263,7 +263,7 @@ public:
   }
   double sqlength(halfedge_descriptor h) const
   {
-    return sqlen(get(pos_, target(h, tm_)) - get(pos_, source(h, tm_)));
+    return squared_norm(get(pos_, target(h, tm_)) - get(pos_, source(h, tm_)));
   }
 
   // ------------------------------------------------------------------ split
@@ -395,19 +395,19 @@ public:
   static bool folds(const Vec3& na, const Vec3& nb)
   {
     double d = dot(na, nb);
-    return d < 0 && d * d > 0.25 * sqlen(na) * sqlen(nb);
+    return d < 0 && d * d > 0.25 * squared_norm(na) * squared_norm(nb);
   }
 
   Vec3 face_normal(halfedge_descriptor g) const
   {
-    const Vec3 a = get(pos_, source(g, tm_));
-    return cross(get(pos_, target(g, tm_)) - a, get(pos_, target(next(g, tm_), tm_)) - a);
+    return triangle_normal(get(pos_, source(g, tm_)), get(pos_, target(g, tm_)),
+                           get(pos_, target(next(g, tm_), tm_)));
   }
 
   struct Star_face
   {
     vertex_descriptor w, x;  // the face (w, centre, x)
-    Vec3 before, after;
+    Vec3 before{}, after{};
   };
 
   bool geometry_ok(halfedge_descriptor h) const
@@ -421,13 +421,13 @@ public:
       vertex_descriptor w = source(g, tm_);
       if (w == v1) continue;
       double hi = 4. / 3. * tsize(v1, w);
-      if (sqlen(get(pos_, w) - p1) > hi * hi) return false;
+      if (squared_norm(get(pos_, w) - p1) > hi * hi) return false;
       if (is_border(g, tm_)) continue;
       vertex_descriptor x = target(next(g, tm_), tm_);  // face (w, v0, x)
       if (x == v1) continue;
       const Vec3 pw = get(pos_, w), px = get(pos_, x);
-      Vec3 n0 = cross(p0 - pw, px - pw), n1 = cross(p1 - pw, px - pw);
-      double l0 = sqlen(n0), l1 = sqlen(n1);
+      Vec3 n0 = triangle_normal(pw, p0, px), n1 = triangle_normal(pw, p1, px);
+      double l0 = squared_norm(n0), l1 = squared_norm(n1);
       if (!(l1 > 1e-24 * l0) || l1 == 0) return false;
       double d = dot(n0, n1);
       if (d <= 0 || d * d < collapse_cos_ * collapse_cos_ * l0 * l1) return false;
@@ -550,8 +550,8 @@ public:
     halfedge_descriptor o = opposite(h, tm_);
     const Vec3 pa = get(pos_, source(h, tm_)), pb = get(pos_, target(h, tm_)),
                pc = get(pos_, target(next(h, tm_), tm_)), pd = get(pos_, target(next(o, tm_), tm_));
-    const Vec3 m1 = cross(pb - pa, pc - pa), m2 = cross(pa - pb, pd - pb);  // (a,b,c), (b,a,d)
-    const Vec3 n1 = cross(pd - pa, pc - pa), n2 = cross(pc - pb, pd - pb);  // (a,d,c), (b,c,d)
+    const Vec3 m1 = triangle_normal(pa, pb, pc), m2 = triangle_normal(pb, pa, pd);  // (a,b,c), (b,a,d)
+    const Vec3 n1 = triangle_normal(pa, pd, pc), n2 = triangle_normal(pb, pc, pd);  // (a,d,c), (b,c,d)
     // outer edges: (b,c), (c,a) of the face of h; (a,d), (d,b) of the face of o
     halfedge_descriptor outer[4] = {next(h, tm_), prev(h, tm_), next(o, tm_), prev(o, tm_)};
     const Vec3* before[4] = {&m1, &m1, &m2, &m2};
@@ -585,10 +585,10 @@ public:
       if (after >= before) continue;
       if (da - 1 < (get(bnd_, a) ? 2 : 3) || db - 1 < (get(bnd_, b) ? 2 : 3)) continue;
       const Vec3 pa = get(pos_, a), pb = get(pos_, b), pc = get(pos_, c), pd = get(pos_, d);
-      Vec3 m1 = cross(pb - pa, pc - pa), m2 = cross(pa - pb, pd - pb);  // (a,b,c), (b,a,d)
-      Vec3 n1 = cross(pd - pa, pc - pa), n2 = cross(pc - pb, pd - pb);  // (a,d,c), (b,c,d)
+      Vec3 m1 = triangle_normal(pa, pb, pc), m2 = triangle_normal(pb, pa, pd);  // (a,b,c), (b,a,d)
+      Vec3 n1 = triangle_normal(pa, pd, pc), n2 = triangle_normal(pb, pc, pd);  // (a,d,c), (b,c,d)
       Vec3 m = m1 + m2;
-      double l1 = sqlen(n1), l2 = sqlen(n2), lm = sqlen(m1) + sqlen(m2);
+      double l1 = squared_norm(n1), l2 = squared_norm(n2), lm = squared_norm(m1) + squared_norm(m2);
       if (!(l1 > 1e-12 * lm) || !(l2 > 1e-12 * lm)) continue;
       if (dot(n1, m) <= 0 || dot(n2, m) <= 0 || dot(n1, n2) <= 0) continue;
       if (flip_folds(h)) continue;
@@ -610,7 +610,7 @@ public:
   {
     // largest cosine of the three angles (= cosine of the smallest angle)
     auto cosine = [](const Vec3& u, const Vec3& v) {
-      double l = std::sqrt(sqlen(u) * sqlen(v));
+      double l = std::sqrt(squared_norm(u) * squared_norm(v));
       return l > 0 ? dot(u, v) / l : 1.;
     };
     return std::max({cosine(b - a, c - a), cosine(a - b, c - b), cosine(a - c, b - c)});
@@ -639,11 +639,11 @@ public:
     double before = std::max(min_angle_cos(pa, pb, pc), min_angle_cos(pb, pa, pd));
     double after = std::max(min_angle_cos(pa, pd, pc), min_angle_cos(pb, pc, pd));
     if (!(after < before)) return false;
-    Vec3 m = cross(pb - pa, pc - pa) + cross(pa - pb, pd - pb);
-    Vec3 n1 = cross(pd - pa, pc - pa), n2 = cross(pc - pb, pd - pb);
+    Vec3 m = triangle_normal(pa, pb, pc) + triangle_normal(pb, pa, pd);
+    Vec3 n1 = triangle_normal(pa, pd, pc), n2 = triangle_normal(pb, pc, pd);
     // the flipped pair must stay nearly coplanar with the old one (no ridge created)
-    double lm = len(m);
-    if (!(lm > 0) || dot(n1, m) <= 0.7 * len(n1) * lm || dot(n2, m) <= 0.7 * len(n2) * lm)
+    double lm = norm(m);
+    if (!(lm > 0) || dot(n1, m) <= 0.7 * norm(n1) * lm || dot(n2, m) <= 0.7 * norm(n2) * lm)
       return false;
     if (flip_folds(h)) return false;
     return !halfedge(c, d, tm_).second;
@@ -670,7 +670,7 @@ public:
       int longest = 0, shortest = 0;
       double l[3];
       for (int i = 0; i < 3; ++i) {
-        l[i] = sqlen(p[(i + 1) % 3] - p[i]);
+        l[i] = squared_norm(p[(i + 1) % 3] - p[i]);
         if (l[i] > l[longest]) longest = i;
         if (l[i] < l[shortest]) shortest = i;
       }
@@ -728,7 +728,7 @@ public:
       const Vec3 pa = get(pos_, source(g, tm_)), pb = get(pos_, target(next(g, tm_), tm_));
       Vec3 n0 = cross(pv - pa, pb - pv), n1 = cross(p - pa, pb - p);
       double d = dot(n0, n1);
-      if (!(d > 0) || d * d < 0.5 * sqlen(n0) * sqlen(n1)) return 2.;
+      if (!(d > 0) || d * d < 0.5 * squared_norm(n0) * squared_norm(n1)) return 2.;
       worst = std::max(worst, min_angle_cos(pa, p, pb));
     }
     return worst;
@@ -764,7 +764,7 @@ public:
           for (double t : {0.04, 0.08, 0.15, 0.25, 0.35}) {
             Vec3 c = pv + t * d;
             // never query the projection trees with NaN (exact predicates abort on it)
-            if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) continue;
+            if (!is_finite(c)) continue;
             double s = get(size_, v);
             int h1 = th, h2 = sh;
             if (project) {
@@ -773,12 +773,12 @@ public:
               else if (line && lines)
                 c = ref.project_line(c, s, h2);
             }
-            if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) continue;
+            if (!is_finite(c)) continue;
             double q = star_min_cos(v, c);
             if (q < best - 1e-9) { best = q; bp = c; best_size = s; bth = h1; bsh = h2; }
           }
         }
-        if (bp.x != pv.x || bp.y != pv.y || bp.z != pv.z) {
+        if (bp != pv) {
           put(pos_, v, bp);
           if (!uniform_) put(size_, v, best_size);
           put(thint_, v, bth);
@@ -805,7 +805,7 @@ public:
 
   Vec3 vertex_normal(vertex_descriptor v) const
   {
-    Vec3 n;
+    Vec3 n{};
     const Vec3 pv = get(pos_, v);
     for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
       if (is_border(g, tm_)) continue;
@@ -826,9 +826,9 @@ public:
       vertex_descriptor v = vs[i];
       const Vec3 pv = get(pos_, v);
       old[i] = pv;
-      Vec3 c;
+      Vec3 c{};
       double sw = 0;
-      Vec3 n;
+      Vec3 n{};
       if (get(kind_, v) == V_FREE) {
         const double sv = uniform_ ? 1. : get(size_, v);
         for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
@@ -837,14 +837,14 @@ public:
           const Vec3 pa = get(pos_, a), pb = get(pos_, b);
           Vec3 cr = cross(pv - pa, pb - pv);
           n += cr;
-          double w = len(cr);
+          double w = norm(cr);
           if (!uniform_) w *= (get(size_, a) + get(size_, b) + sv) / 3.;
           c += w * (pa + pb + pv);
           sw += 3. * w;
         }
         if (sw > 0) {
           c *= 1. / sw;
-          double nl = len(n);
+          double nl = norm(n);
           if (nl > 0) {
             n *= 1. / nl;
             c += n * dot(n, pv - c);
@@ -856,7 +856,7 @@ public:
           if (!(get(flag_, edge(g, tm_)) & LINE)) continue;
           vertex_descriptor a = source(g, tm_);
           const Vec3 pa = get(pos_, a);
-          double w = len(pa - pv);
+          double w = norm(pa - pv);
           if (!uniform_) w *= 0.5 * (get(size_, a) + get(size_, v));
           c += w * 0.5 * (pa + pv);
           sw += w;
@@ -867,9 +867,8 @@ public:
       normal[i] = n;
       double s = get(size_, v);
       // never query the projection trees with NaN (exact predicates abort on it)
-      auto finite3 = [](const Vec3& q) { return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z); };
-      if (!finite3(c)) c = pv;
-      if (project && finite3(c)) {
+      if (!is_finite(c)) c = pv;
+      if (project && is_finite(c)) {
         if (get(kind_, v) == V_FREE && surf) {
           int hint = get(thint_, v);
           c = ref.project_surface(c, s, hint, get(size_, v));
@@ -991,9 +990,7 @@ public:
     for (vertex_descriptor v : vertices(tm_)) {
       const Vec3 q = get(pos_, v);
       const Point& p = get(vpm_, v);
-      if (CGAL::to_double(p.x()) != q.x || CGAL::to_double(p.y()) != q.y ||
-          CGAL::to_double(p.z()) != q.z)
-        put(vpm_, v, Point(q.x, q.y, q.z));
+      if (to_vec3(p) != q) put(vpm_, v, Point(q[0], q[1], q[2]));
     }
   }
 

@@ -531,9 +531,11 @@ public:
 // fill_small_holes() on the whole mesh, with the settings of `np` and the
 // defaults of the cad profile when `cad` (read_hole_filling_settings): the
 // public call (`cad` false) and the holes the solid repair leaves (repair.h).
+// `counts`, when given, receives what its local operations did (the job's
+// face accounting).
 template <typename PolygonMesh, typename NamedParameters, typename Visitor>
 Hole_filling_result fill_small_holes_with(PolygonMesh& pmesh, const NamedParameters& np, bool cad,
-                                          Visitor& visitor)
+                                          Visitor& visitor, Local_operation_counts* counts = nullptr)
 {
   Hole_filling_result r;
   Hole_filling_settings settings;
@@ -550,15 +552,17 @@ Hole_filling_result fill_small_holes_with(PolygonMesh& pmesh, const NamedParamet
   Local_operations<PolygonMesh, decltype(vpm)> ops(pmesh, vpm);
   Small_hole_filler<PolygonMesh, decltype(vpm)> filler(ops, settings);
   filler.result.status = filler.run(visitor);
+  if (counts) *counts = ops.counts();
   return filler.result;
 }
 
 // The same with the profile's defaults and no visitor of the caller's.
 template <typename PolygonMesh, typename NamedParameters>
-Hole_filling_result fill_small_holes_of_profile(PolygonMesh& pmesh, const NamedParameters& np, bool cad)
+Hole_filling_result fill_small_holes_of_profile(PolygonMesh& pmesh, const NamedParameters& np, bool cad,
+                                                Local_operation_counts* counts = nullptr)
 {
   Default_visitor quiet;
-  return fill_small_holes_with(pmesh, np, cad, quiet);
+  return fill_small_holes_with(pmesh, np, cad, quiet, counts);
 }
 
 }  // namespace clean_pipeline

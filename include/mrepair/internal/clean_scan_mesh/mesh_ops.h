@@ -30,10 +30,7 @@ Vec3 face_normal(typename boost::graph_traits<PM>::halfedge_descriptor h, const 
 {
   Vec3 n{0, 0, 0};
   for (auto hh : CGAL::halfedges_around_face(h, pm)) {
-    Vec3 a = point(vpm, source(hh, pm)), b = point(vpm, target(hh, pm));
-    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    n += newell_term(point(vpm, source(hh, pm)), point(vpm, target(hh, pm)));
   }
   return n;
 }

@@ -169,6 +169,7 @@ Scan_cleaning_result run_pipeline(PolygonMesh& pmesh, const NamedParameters& np)
     if (!r.steps[i].enabled) return true;
     Phase_scope<Handle> phase(visitor, clean_step_name(i));
     const Stopwatch step_clock;
+    const Local_operation_counts before = ops.counts();
     Step_outcome o = body();
     Clean_step_stats& s = r.steps[i];
     s.seconds += step_clock.seconds();
@@ -176,8 +177,9 @@ Scan_cleaning_result run_pipeline(PolygonMesh& pmesh, const NamedParameters& np)
     if (!o.available) return true;
     ++s.runs;
     s.changes += o.changes;
-    s.faces_removed += o.faces_removed;
-    s.faces_added += o.faces_added;
+    // the face accounting: what the layer saw the step remove and add
+    s.faces_removed += ops.counts().faces_removed - before.faces_removed;
+    s.faces_added += ops.counts().faces_added - before.faces_added;
     s.last_status = o.status;
     s.last_report = std::move(o.report);
     return o.status != Status::cancelled;
@@ -224,7 +226,6 @@ Scan_cleaning_result run_pipeline(PolygonMesh& pmesh, const NamedParameters& np)
       }
       o.changes = r.faces_removed_with_non_finite + r.non_finite_vertices_removed +
                   r.isolated_vertices_removed;
-      o.faces_removed = r.faces_removed_with_non_finite;
       o.report.add("non_finite_vertices_removed", r.non_finite_vertices_removed);
       o.report.add("isolated_vertices_removed", r.isolated_vertices_removed);
       o.report.add("faces_removed_with_non_finite", r.faces_removed_with_non_finite);
@@ -252,37 +253,21 @@ Scan_cleaning_result run_pipeline(PolygonMesh& pmesh, const NamedParameters& np)
         run_step(3, [&]() {
           Boundary_cleaning_result b = clean_boundaries_with(ops, boundary_settings, fwd);
           add_totals(r.boundaries, b);
-          Step_outcome o;
-          o.status = b.status;
-          o.changes = b.faces_removed + b.component_faces_removed;
-          o.faces_removed = o.changes;
-          b.to_report(o.report);
-          return o;
+          return step_outcome(b, b.faces_removed + b.component_faces_removed);
         }) &&
         run_step(4, [&]() {
           Small_components_result c = remove_small_components_seeded(
               ops, faces(pmesh), min_comp, relative_comp, static_cast<const std::nullptr_t*>(nullptr),
               cad);
           add_totals(r.components, c);
-          Step_outcome o;
-          o.status = c.status;
-          o.changes = c.faces_removed;
-          o.faces_removed = c.faces_removed;
-          c.to_report(o.report);
-          return o;
+          return step_outcome(c, c.faces_removed);
         }) &&
         run_step(5, [&]() {
           Small_hole_filler<PolygonMesh, VPM> filler(ops, hole_settings);
           filler.result.status = filler.run(fwd);
           const Hole_filling_result& h = filler.result;
           add_totals(r.holes, h);
-          Step_outcome o;
-          o.status = h.status;
-          o.changes = h.holes_filled + h.enlargement_faces_removed;
-          o.faces_removed = h.enlargement_faces_removed;
-          o.faces_added = h.faces_added;
-          h.to_report(o.report);
-          return o;
+          return step_outcome(h, h.holes_filled + h.enlargement_faces_removed);
         }) &&
         run_step(6, [&]() { return spikes->fix_near_degenerate(fwd); }) &&
         run_step(7, [&]() { return spikes->relax(fwd); });
@@ -309,14 +294,9 @@ Scan_cleaning_result run_pipeline(PolygonMesh& pmesh, const NamedParameters& np)
   // duplicate face and no non-manifold vertex goes out.
   const bool valid_ok = run_step(8, [&]() {
     // the structure was checked on entry; only the steps above edited it since
-    r.validity = ensure_valid_mesh(pmesh, np, false);
-    Step_outcome o;
-    o.status = r.validity.status;
-    o.changes = r.validity.operations + r.validity.duplicate_faces_removed +
-                r.validity.non_manifold_vertices_split;
-    o.faces_removed = r.validity.faces_removed();
-    r.validity.to_report(o.report);
-    return o;
+    r.validity = ensure_valid_mesh_with(ops, np, false);
+    return step_outcome(r.validity, r.validity.operations + r.validity.duplicate_faces_removed +
+                                        r.validity.non_manifold_vertices_split);
   });
   (void)valid_ok;
   // relax_spikes (step 1) is expected to leave unrelaxable spikes to step 2

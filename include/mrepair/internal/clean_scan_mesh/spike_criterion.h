@@ -10,6 +10,7 @@
 #ifndef MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SPIKE_CRITERION_H
 #define MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SPIKE_CRITERION_H
 
+#include <mrepair/internal/utility.h>
 #include <mrepair/parameters.h>
 
 #include <cmath>
@@ -34,21 +35,17 @@ constexpr double spike_height_prefilter_radians = 0.2617993877991494;
 /// may come in any order and either orientation, as long as all have the same.
 struct Spike_link_sums
 {
-  double start[3] = {0, 0, 0};   // sum of (a - p): the link vertices, each once
-  double newell[3] = {0, 0, 0};  // sum of (a - p) x (b - p)
-  double length = 0;             // sum of |b - a|
+  Vec3 start{{0, 0, 0}};   // sum of (a - p): the link vertices, each once
+  Vec3 newell{{0, 0, 0}};  // sum of (a - p) x (b - p)
+  double length = 0;       // sum of |b - a|
   std::size_t edges = 0;
 
   void add(const double* p, const double* a, const double* b)
   {
-    const double u[3] = {a[0] - p[0], a[1] - p[1], a[2] - p[2]};
-    const double w[3] = {b[0] - p[0], b[1] - p[1], b[2] - p[2]};
-    for (int j = 0; j < 3; ++j) start[j] += u[j];
-    newell[0] += u[1] * w[2] - u[2] * w[1];
-    newell[1] += u[2] * w[0] - u[0] * w[2];
-    newell[2] += u[0] * w[1] - u[1] * w[0];
-    const double d[3] = {w[0] - u[0], w[1] - u[1], w[2] - u[2]};
-    length += std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const Vec3 o = load_vec3(p), u = sub(load_vec3(a), o), w = sub(load_vec3(b), o);
+    start += u;
+    newell += cross(u, w);
+    length += norm(sub(w, u));
     ++edges;
   }
 };
@@ -59,12 +56,11 @@ inline bool link_exceeds_spike_height(const Spike_link_sums& s, double height_fa
 {
   if (!(height_factor > 0) || s.edges < 3) return false;
   const double k = static_cast<double>(s.edges);
-  const double c[3] = {s.start[0] / k, s.start[1] / k, s.start[2] / k};  // centroid - p
-  const double nn = std::sqrt(s.newell[0] * s.newell[0] + s.newell[1] * s.newell[1] +
-                              s.newell[2] * s.newell[2]);
+  const Vec3 c{{s.start[0] / k, s.start[1] / k, s.start[2] / k}};  // centroid - p
+  const double nn = norm(s.newell);
   const double link = s.length / k;
   if (!(nn > 0) || !(link > 0)) return false;
-  const double dist = std::abs(c[0] * s.newell[0] + c[1] * s.newell[1] + c[2] * s.newell[2]) / nn;
+  const double dist = std::abs(dot(c, s.newell)) / nn;
   return dist > height_factor * link;
 }
 

@@ -32,9 +32,19 @@ struct Step_outcome
   bool available = true;
   Status status = Status::ok;
   std::size_t changes = 0;  // elements changed (moved, removed, collapsed)
-  std::size_t faces_removed = 0, faces_added = 0;  // by the step's own counters
   Report report;
 };
+
+// the outcome of a step whose result `r` has a status and a report
+template <typename Result>
+Step_outcome step_outcome(const Result& r, std::size_t changes)
+{
+  Step_outcome o;
+  o.status = r.status;
+  o.changes = changes;
+  r.to_report(o.report);
+  return o;
+}
 
 // `NP`: the pipeline's named parameters, forwarded: the steps read their
 // settings from them as the public calls do (relax_spikes.h,
@@ -87,42 +97,28 @@ public:
   template <typename Visitor>
   Step_outcome relax(Visitor& vis)
   {
-    Step_outcome o;
     Spike_relaxation_result r =
         relax_spikes_with(ops_, stats(), spike_settings_, vis, tracker_.get());
-    o.status = r.status;
-    o.changes = r.vertices_relaxed;
-    r.to_report(o.report);
-    return o;
+    return step_outcome(r, r.vertices_relaxed);
   }
 
   template <typename Visitor>
   Step_outcome remove_unrelaxable(Visitor& vis)
   {
-    Step_outcome o;
     Spike_removal_result r =
         remove_unrelaxable_spikes_with(ops_, stats(), spike_settings_, vis, tracker_.get());
-    o.status = r.status;
-    o.changes = r.faces_removed + r.dangling_faces_removed;
-    o.faces_removed = r.faces_removed + r.dangling_faces_removed;
-    r.to_report(o.report);
-    return o;
+    return step_outcome(r, r.faces_removed + r.dangling_faces_removed);
   }
 
   template <typename Visitor>
   Step_outcome fix_near_degenerate(Visitor& vis)
   {
-    Step_outcome o;
     Near_degenerate_settings s;  // the operation cap depends on the current edge count
     std::string unused;
     read_near_degenerate_settings(np_, stats().edge_count(), s, unused);
     Near_degenerate_faces_result r =
         repair_near_degenerate_faces_with(ops_, stats(), s, vis);
-    o.status = r.status;
-    o.changes = r.edges_collapsed + r.edges_flipped;
-    o.faces_removed = r.faces_before - r.faces_after;
-    r.to_report(o.report);
-    return o;
+    return step_outcome(r, r.edges_collapsed + r.edges_flipped);
   }
 };
 

@@ -191,8 +191,7 @@ public:
       refuse(Status::invalid_mesh, "the input is not a valid triangle mesh");
       return;
     }
-    double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                            (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    double diag = distance(load_vec3(hi), load_vec3(lo));
     if (!(diag <= max_bbox_diagonal)) {
       refuse(Status::non_finite_input, coordinates_too_large_message);
       return;
@@ -207,7 +206,7 @@ public:
     for (halfedge_descriptor h : border) {
       Id a = id_of(source(h, tm)), b = id_of(target(h, tm));
       edges.push_back(key(a, b));
-      total += std::sqrt(sqdist(pos(a), pos(b)));
+      total += distance(pos(a), pos(b));
     }
     const std::size_t nb = vd_.size();
     input_boundary_ = nb;
@@ -343,7 +342,7 @@ public:
     }
     for (Id i = 0; i < orig_.size(); ++i)
       if (has_orig_[i] && alive_[i])
-        r.max_displacement = std::max(r.max_displacement, std::sqrt(sqdist(pos(i), p3(orig_[i]))));
+        r.max_displacement = std::max(r.max_displacement, distance(pos(i), p3(orig_[i])));
     r.final_distance = current_distance();
     return r;
   }
@@ -543,7 +542,7 @@ private:
     if (best > max_dist_) return pr;
     Id a = ka(best_e), b = kb(best_e);
     P3 pa = pos(a), pb = pos(b);
-    double len = std::sqrt(sqdist(pa, pb));
+    double len = distance(pa, pb);
     double eps = std::min(snap_, len / 3);
     pr.edge = best_e;
     if (best_t * len <= eps) {
@@ -622,12 +621,11 @@ private:
 
   static double seg_dist(const P3& p, const P3& a, const P3& b, double& t)
   {
-    P3 ab{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    double l2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
-    t = l2 > 0 ? ((p[0] - a[0]) * ab[0] + (p[1] - a[1]) * ab[1] + (p[2] - a[2]) * ab[2]) / l2 : 0;
+    const P3 ab = sub(b, a);
+    const double l2 = squared_norm(ab);
+    t = l2 > 0 ? dot(sub(p, a), ab) / l2 : 0;
     t = std::min(1.0, std::max(0.0, t));
-    P3 q{a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2]};
-    return std::sqrt(sqdist(p, q));
+    return distance(p, add(a, mul(ab, t)));
   }
 
   // ---- local checks --------------------------------------------------------

@@ -332,17 +332,17 @@ bool has_non_manifold_vertices(const PM& pm)
 }  // namespace internal
 
 namespace internal {
-// the body of ensure_valid_mesh(); `check_structure` false when the caller
-// checked the halfedge structure itself and only its own steps edited the
-// mesh since (clean_scan_mesh: 50 ms of a 1M-face job)
-template <typename PolygonMesh, typename NamedParameters>
-Validity_result ensure_valid_mesh(PolygonMesh& pmesh, const NamedParameters& np, bool check_structure)
+// the body of ensure_valid_mesh(), editing through `ops` (the pipeline's,
+// whose counts are its face accounting); `check_structure` false when the
+// caller checked the halfedge structure itself and only its own steps edited
+// the mesh since (clean_scan_mesh: 50 ms of a 1M-face job)
+template <typename PolygonMesh, typename VPM, typename NamedParameters>
+Validity_result ensure_valid_mesh_with(Local_operations<PolygonMesh, VPM>& ops, const NamedParameters& np,
+                                       bool check_structure)
 {
   using GT = boost::graph_traits<PolygonMesh>;
   using face_descriptor = typename GT::face_descriptor;
-  auto vpm = CGAL::parameters::choose_parameter(
-      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
-      get_property_map(CGAL::vertex_point, pmesh));
+  PolygonMesh& pmesh = ops.mesh();
   const std::size_t cap = internal::get_or(np, internal_np::max_validity_operations, std::size_t(0));
   Validity_result r;
   if (internal::face_count(pmesh) == 0) return r;
@@ -390,10 +390,9 @@ Validity_result ensure_valid_mesh(PolygonMesh& pmesh, const NamedParameters& np,
       pillow_faces.insert(pillow_faces.end(), s.pillows.begin(), s.pillows.end());
     }
   }
-  internal::Local_operations<PolygonMesh, decltype(vpm)> ops(pmesh, vpm);
   ops.remove_components(pillow_faces);
   r.duplicate_faces_removed += pillow_faces.size();
-  internal::validity::Degeneracy_fixer<PolygonMesh, decltype(vpm)> fixer(ops, r);
+  internal::validity::Degeneracy_fixer<PolygonMesh, VPM> fixer(ops, r);
   fixer.run(cap);
 
   // Duplicate faces: the same three vertices.
@@ -437,6 +436,17 @@ Validity_result ensure_valid_mesh(PolygonMesh& pmesh, const NamedParameters& np,
                 " exactly degenerate faces left (no collapse, flip or removal keeps the mesh valid)";
   }
   return r;
+}
+
+// the same on a mesh of its own, with its own local operations
+template <typename PolygonMesh, typename NamedParameters>
+Validity_result ensure_valid_mesh(PolygonMesh& pmesh, const NamedParameters& np, bool check_structure)
+{
+  auto vpm = CGAL::parameters::choose_parameter(
+      CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+      get_property_map(CGAL::vertex_point, pmesh));
+  internal::Local_operations<PolygonMesh, decltype(vpm)> ops(pmesh, vpm);
+  return ensure_valid_mesh_with(ops, np, check_structure);
 }
 } // namespace internal
 

@@ -350,20 +350,15 @@ private:
         double* n = &normal_[3 * f];
         if (k == 3) {
           const double *p = a_.point(v[0]), *q = a_.point(v[1]), *w = a_.point(v[2]);
-          const double u0[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-          const double u1[3] = {w[0] - q[0], w[1] - q[1], w[2] - q[2]};
-          const double u2[3] = {p[0] - w[0], p[1] - w[1], p[2] - w[2]};
-          n[0] = u0[1] * u1[2] - u0[2] * u1[1];
-          n[1] = u0[2] * u1[0] - u0[0] * u1[2];
-          n[2] = u0[0] * u1[1] - u0[1] * u1[0];
-          const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+          const Vec3 vp = load_vec3(p), vq = load_vec3(q), vw = load_vec3(w);
+          const Vec3 u0 = sub(vq, vp), u1 = sub(vw, vq), u2 = sub(vp, vw);
+          const Vec3 nf = cross(u0, u1);
+          std::copy(nf.begin(), nf.end(), n);
+          const double len = norm(nf);
           s.area += 0.5 * len;
           // corner angle at a vertex: between the edge leaving it and the
           // reversed edge entering it; |cross| is 2 x area at every corner.
-          const double d0 = -(u0[0] * u2[0] + u0[1] * u2[1] + u0[2] * u2[2]);
-          const double d1 = -(u1[0] * u0[0] + u1[1] * u0[1] + u1[2] * u0[2]);
-          const double d2 = -(u2[0] * u1[0] + u2[1] * u1[1] + u2[2] * u1[2]);
-          const double d[3] = {d0, d1, d2};
+          const double d[3] = {-dot(u0, u2), -dot(u1, u0), -dot(u2, u1)};
           for (int i = 0; i < 3; ++i) {
             double ang = std::numeric_limits<double>::quiet_NaN();  // computed when needed
             skinny_corner_[c0 + i] = skinny_t.below(len, d[i], ang);
@@ -375,8 +370,7 @@ private:
             }
           }
           s.angles += 3;
-          s.volume += (p[0] * (q[1] * w[2] - q[2] * w[1]) + p[1] * (q[2] * w[0] - q[0] * w[2]) +
-                       p[2] * (q[0] * w[1] - q[1] * w[0])) / 6.0;
+          s.volume += dot(vp, cross(vq, vw)) / 6.0;
           if (!repeated_[f] &&
               CGAL::collinear(K::Point_3(p[0], p[1], p[2]), K::Point_3(q[0], q[1], q[2]),
                               K::Point_3(w[0], w[1], w[2]))) {
@@ -385,17 +379,15 @@ private:
           }
         } else {
           // Newell normal: twice the vector area of a (possibly non-planar) polygon
-          const double* p0 = a_.point(v[0]);
+          const Vec3 p0 = load_vec3(a_.point(v[0]));
+          Vec3 nf{{0, 0, 0}};
           for (std::size_t i = 0; i < k; ++i) {
-            const double *p = a_.point(v[i]), *q = a_.point(v[(i + 1) % k]);
-            n[0] += (p[1] - q[1]) * (p[2] + q[2]);
-            n[1] += (p[2] - q[2]) * (p[0] + q[0]);
-            n[2] += (p[0] - q[0]) * (p[1] + q[1]);
-            if (i >= 1 && i + 1 < k)
-              s.volume += (p0[0] * (p[1] * q[2] - p[2] * q[1]) + p0[1] * (p[2] * q[0] - p[0] * q[2]) +
-                           p0[2] * (p[0] * q[1] - p[1] * q[0])) / 6.0;
+            const Vec3 p = load_vec3(a_.point(v[i])), q = load_vec3(a_.point(v[(i + 1) % k]));
+            nf += newell_term(p, q);
+            if (i >= 1 && i + 1 < k) s.volume += dot(p0, cross(p, q)) / 6.0;
           }
-          s.area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+          std::copy(nf.begin(), nf.end(), n);
+          s.area += 0.5 * norm(nf);
           if (!repeated_[f]) {
             poly.clear();
             for (std::size_t i = 0; i < k; ++i) {
@@ -522,8 +514,7 @@ private:
         }
         if (a_.finite[v0] && a_.finite[v1]) {
           const double *p = a_.point(v0), *q = a_.point(v1);
-          const double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-          edge_len_[e] = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+          edge_len_[e] = distance(load_vec3(q), load_vec3(p));
           s.sum += edge_len_[e];
           ++s.lengths;
         }
@@ -534,17 +525,12 @@ private:
         if (same_direction) ++s.inconsistent;
         const Inspect_index f0 = a_.corner_f[c0], f1 = a_.corner_f[c1];
         if (!face_ok_[f0] || !face_ok_[f1]) continue;
-        const double *n0 = &normal_[3 * f0], *n1 = &normal_[3 * f1];
+        const Vec3 n0 = load_vec3(&normal_[3 * f0]), n1 = load_vec3(&normal_[3 * f1]);
         // faces of inconsistent orientation: compare with one normal reversed,
         // so that the angle measures the fold of the surface, not the labels
         const double sg = same_direction ? -1.0 : 1.0;
-        const double dot = sg * (n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2]);
-        const double cx = n0[1] * n1[2] - n0[2] * n1[1], cy = n0[2] * n1[0] - n0[0] * n1[2],
-                     cz = n0[0] * n1[1] - n0[1] * n1[0];
-        const double cr = std::sqrt(cx * cx + cy * cy + cz * cz);
-        if ((n0[0] == 0 && n0[1] == 0 && n0[2] == 0) || (n1[0] == 0 && n1[1] == 0 && n1[2] == 0))
-          continue;
-        const double ang = std::atan2(cr, dot) * degrees_per_radian;
+        if (is_zero(n0) || is_zero(n1)) continue;
+        const double ang = std::atan2(norm(cross(n0, n1)), sg * dot(n0, n1)) * degrees_per_radian;
         edge_dihedral_[e] = ang;
         s.max_dihedral = std::max(s.max_dihedral, ang);
       }
@@ -971,18 +957,15 @@ private:
           const std::size_t e = seg_edge[static_cast<std::size_t>(id - segs.cbegin())];
           const Inspect_index v0 = a_.edge_v[2 * e], v1 = a_.edge_v[2 * e + 1];
           if (v0 == v || v1 == v) continue;
-          const double *x = a_.point(v0), *y = a_.point(v1);
-          const double d[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
-          const double w[3] = {p[0] - x[0], p[1] - x[1], p[2] - x[2]};
-          const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+          const Vec3 x = load_vec3(a_.point(v0)), y = load_vec3(a_.point(v1)), pv = load_vec3(p);
+          const Vec3 d = sub(y, x), w = sub(pv, x);
+          const double dd = squared_norm(d);
           if (dd == 0) continue;
-          const double tpar = (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd;
+          const double tpar = dot(w, d) / dd;
           if (tpar <= 0 || tpar >= 1) continue;
-          const double r[3] = {w[0] - tpar * d[0], w[1] - tpar * d[1], w[2] - tpar * d[2]};
-          const double u[3] = {p[0] - y[0], p[1] - y[1], p[2] - y[2]};
-          if (r[0] * r[0] + r[1] * r[1] + r[2] * r[2] > tol2) continue;
-          if (w[0] * w[0] + w[1] * w[1] + w[2] * w[2] <= tol2) continue;
-          if (u[0] * u[0] + u[1] * u[1] + u[2] * u[2] <= tol2) continue;
+          if (squared_norm(sub(w, mul(d, tpar))) > tol2) continue;
+          if (squared_norm(w) <= tol2) continue;
+          if (squared_norm(sub(pv, y)) <= tol2) continue;
           ++s.n;
           if (sink_) s.found.emplace_back(v, static_cast<Inspect_index>(e));
           break;

@@ -12,6 +12,7 @@
 
 #include <mrepair/internal/io/common.h>
 #include <mrepair/internal/io/text_chunks.h>
+#include <mrepair/internal/utility.h>
 
 namespace mrepair {
 namespace internal {
@@ -220,21 +221,12 @@ void write_ply(Out_file& out, const View& s, const Soup_stats& stats, bool binar
 }
 
 /// unit normal of triangle (a,b,c), or zero when degenerate.
-inline void triangle_normal(const double* a, const double* b, const double* c, double* n)
+inline Vec3 unit_triangle_normal(const double* a, const double* b, const double* c)
 {
-  double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  n[0] = u[1] * v[2] - u[2] * v[1];
-  n[1] = u[2] * v[0] - u[0] * v[2];
-  n[2] = u[0] * v[1] - u[1] * v[0];
-  double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  if (l > 0 && std::isfinite(l)) {
-    n[0] /= l;
-    n[1] /= l;
-    n[2] /= l;
-  } else {
-    n[0] = n[1] = n[2] = 0;
-  }
+  const Vec3 n = triangle_normal(load_vec3(a), load_vec3(b), load_vec3(c));
+  const double l = norm(n);
+  if (!(l > 0 && std::isfinite(l))) return Vec3{{0, 0, 0}};
+  return {{n[0] / l, n[1] / l, n[2] / l}};
 }
 
 template <class View>
@@ -260,8 +252,7 @@ void write_stl(Out_file& out, const View& s, const Soup_stats& stats, bool binar
       s.point(static_cast<std::size_t>(s.index(f, k)), corners[1]);
       s.point(static_cast<std::size_t>(s.index(f, k + 1)), corners[2]);
       const double* tri[3] = {corners[0], corners[1], corners[2]};
-      double nrm[3];
-      triangle_normal(tri[0], tri[1], tri[2], nrm);
+      const Vec3 nrm = unit_triangle_normal(tri[0], tri[1], tri[2]);
       if (binary) {
         char* rec = piece.room(50);
         for (int d = 0; d < 3; ++d) store_le<float>(rec + 4 * d, static_cast<float>(nrm[d]));
