@@ -26,8 +26,8 @@
 
 #include <mrepair/internal/halfedge_builder.h>
 #include <mrepair/internal/inspect/parallel.h>
-#include <mrepair/internal/point_grid.h>
 #include <mrepair/internal/polygon_triangulation.h>
+#include <mrepair/internal/spatial_grid.h>
 #include <mrepair/internal/utility.h>
 #include <mrepair/stitch_soup_result.h>
 
@@ -260,7 +260,7 @@ public:
   template <class F>
   void near_pairs(const std::vector<Idx>& ids, double eps, F f)
   {
-    const Point_grid<Idx> grid(cell_size(eps), ids, [&](Idx i) -> const Vec& { return P[i]; });
+    const Spatial_grid<Idx> grid(cell_size(eps), ids, [&](Idx i) -> const Vec& { return P[i]; });
     const double eps2 = eps * eps;
     for (const auto& e : grid.entries()) {
       const Idx a = e.id;
@@ -924,7 +924,7 @@ public:
   // way round; found through a grid over the sides' source points
   std::vector<Side_pair> stitch_candidates(const std::vector<Idx>& bnd, double eps) const
   {
-    const Point_grid<Idx> grid(cell_size(eps), bnd, [&](Idx slot) -> const Vec& { return P[src(slot)]; });
+    const Spatial_grid<Idx> grid(cell_size(eps), bnd, [&](Idx slot) -> const Vec& { return P[src(slot)]; });
     std::vector<Side_pair> cand;
     const double eps2 = eps * eps;
     auto scan = [&](Idx s, const Vec& near_src, const Vec& near_dst, bool same) {
