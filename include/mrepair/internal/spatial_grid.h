@@ -15,11 +15,12 @@
 // The parts: `Grid_box` (a box and its tests), `Grid_cell` and `Cell_range`
 // (the cells a box spans, visited in (x, y, z) order), the cell keys
 // (`pack_cell`: 21 bits an axis; `hash_cell`: a mix of three 64-bit indices),
-// `Cell_table` (open addressing from a cell key to a 32-bit value: the start
-// of a cell's run, or the head of its chain) and `Spatial_grid`, the static
-// grid: (cell, id) entries sorted once, each cell's run found through the
-// table. The gap closer's `Segment_grid` (close_gaps/boundary_grid.h) chains
-// its items through the same table, as it grows; the self-intersection
+// `Basic_cell_table` (open addressing from a cell key, or a 32-bit tag of
+// its hash, to a 32-bit value: the start of a cell's run, or the head of its
+// chain) and `Spatial_grid`, the static grid: (cell, id) entries sorted
+// once, each cell's run found through the table by its tag. The gap closer's
+// `Segment_grid` (close_gaps/boundary_grid.h) chains its items through the
+// same table (`Cell_table`, exact keys), as it grows; the self-intersection
 // counter (inspect/self_intersections.h) gathers its cells' entries by a
 // parallel counting sort on the cell keys and keeps a pair in the one cell
 // `owns_pair` names.
@@ -150,13 +151,17 @@ bool owns_pair(std::uint64_t key, const T* a, const T* b, const CellOf& cell)
                    cell(std::max(a[2], b[2]), 2)) == key;
 }
 
-/// open addressing from 64-bit cell keys (not ~0) to 32-bit values, at most
-/// half full. A key may be entered several times (cells whose keys collide);
-/// `find` then tells them apart by their values.
-class Cell_table
+/// open addressing from cell keys (`Key`: 64 bits, or 32 bits of a
+/// `hash_cell` as a tag: half the memory) to 32-bit values, at most half
+/// full. A key may be entered several times (cells whose keys or tags
+/// collide); `find` then tells them apart by their values. The key ~0 is
+/// reserved.
+template <typename Key>
+class Basic_cell_table
 {
 public:
   static constexpr std::uint32_t npos = 0xffffffffu;
+  static constexpr Key empty_key = static_cast<Key>(~Key(0));
 
   /// empties the table, with room for `expected` keys.
   void reset(std::size_t expected = 0)
@@ -173,7 +178,7 @@ public:
 
   /// the value of `key` for which same(value) holds, or npos.
   template <typename Same>
-  std::uint32_t find(std::uint64_t key, const Same& same) const
+  std::uint32_t find(Key key, const Same& same) const
   {
     for (std::size_t i = first_slot(key);; i = (i + 1) & mask_) {
       const Slot& s = slots_[i];
@@ -181,12 +186,12 @@ public:
       if (s.key == empty_key) return npos;
     }
   }
-  std::uint32_t find(std::uint64_t key) const
+  std::uint32_t find(Key key) const
   {
     return find(key, [](std::uint32_t) { return true; });
   }
   /// enters `key` again with `value`.
-  void insert(std::uint64_t key, std::uint32_t value)
+  void insert(Key key, std::uint32_t value)
   {
     if (2 * (used_ + 1) > slots_.size()) grow();
     std::size_t i = first_slot(key);
@@ -195,7 +200,7 @@ public:
     ++used_;
   }
   /// the value of `key`, entered as npos when missing.
-  std::uint32_t& at(std::uint64_t key)
+  std::uint32_t& at(Key key)
   {
     if (2 * (used_ + 1) > slots_.size()) grow();
     for (std::size_t i = first_slot(key);; i = (i + 1) & mask_) {
@@ -210,16 +215,15 @@ public:
   }
 
 private:
-  static constexpr std::uint64_t empty_key = ~std::uint64_t(0);
   struct Slot
   {
-    std::uint64_t key;
+    Key key;
     std::uint32_t value;
   };
   // Fibonacci hashing: the high bits of the product place the key
-  std::size_t first_slot(std::uint64_t key) const
+  std::size_t first_slot(Key key) const
   {
-    return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
+    return static_cast<std::size_t>((std::uint64_t(key) * 0x9E3779B97F4A7C15ull) >> shift_);
   }
   void grow()
   {
@@ -239,10 +243,12 @@ private:
   std::size_t mask_ = 15, used_ = 0;
   int shift_ = 60;
 };
+/// the table of exact 64-bit cell keys (pack_cell)
+using Cell_table = Basic_cell_table<std::uint64_t>;
 
 /// A static grid of ids, each entered in one cell (a point) or in the cells
 /// of a range (a box): the (cell, id) entries sorted once by cell, then id,
-/// and a `Cell_table` from each occupied cell to the start of its run.
+/// and a table from each occupied cell's tag to the start of its run.
 template <typename Id>
 class Spatial_grid
 {
@@ -265,7 +271,7 @@ public:
     table_.reset(runs);
     for (std::size_t i = 0; i < entries_.size(); ++i)
       if (i == 0 || entries_[i].c != entries_[i - 1].c)
-        table_.insert(hash_cell(entries_[i].c), static_cast<std::uint32_t>(i));
+        table_.insert(tag(entries_[i].c), static_cast<std::uint32_t>(i));
   }
   /// a grid of points in cells of size `cell`, the point of id `i` being
   /// `point(i)` (a `Vec3`). With a cell no smaller than a search radius,
@@ -326,13 +332,22 @@ private:
   // the start of the run of cell c, or entries_.size() when c is empty
   std::size_t find(const Grid_cell& c) const
   {
-    const std::uint32_t s = table_.find(hash_cell(c), [&](std::uint32_t start) { return entries_[start].c == c; });
-    return s == Cell_table::npos ? entries_.size() : s;
+    const std::uint32_t s = table_.find(tag(c), [&](std::uint32_t start) { return entries_[start].c == c; });
+    return s == Table::npos ? entries_.size() : s;
+  }
+
+  // 32 bits of the cell's hash (a slot of 8 bytes; equal tags are told
+  // apart by the run's cell)
+  using Table = Basic_cell_table<std::uint32_t>;
+  static std::uint32_t tag(const Grid_cell& c)
+  {
+    const std::uint32_t t = static_cast<std::uint32_t>(hash_cell(c) >> 32);
+    return t == Table::empty_key ? t - 1 : t;
   }
 
   double cell_;
   std::vector<Entry> entries_;
-  Cell_table table_;
+  Table table_;
 };
 
 } // namespace internal

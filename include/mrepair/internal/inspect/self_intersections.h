@@ -145,9 +145,10 @@ inline void certify_flat_stars(Surface_arrays& a)
 // Broad phase: a uniform grid of cells twice the mean face extent (the
 // spatial grid's cells and keys, internal/spatial_grid.h), built by a
 // parallel counting sort of (cell, face) entries on a cell hash; each
-// candidate pair is tested in the one cell that holds the lower corner of the
-// overlap of the two boxes (owns_pair), so it is tested once. The rare faces spanning many cells are
-// matched by CGAL's box_intersection_d instead. Cells are processed in parallel.
+// candidate pair is tested in the one cell that holds the lower corner of
+// the overlap of the two boxes (owns_pair), so it is tested once. The rare
+// faces spanning many cells are matched by CGAL's box_intersection_d
+// instead. Cells are processed in parallel.
 // the float next to `f` upwards or downwards: std::nextafter, inlined (a
 // call per box side was a fifth of the boxes' time)
 inline float float_step(float f, bool up)
