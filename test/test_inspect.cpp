@@ -5,6 +5,7 @@
 #include <mrepair/internal/studio/overlay.h>
 #include <mrepair/locate_defects.h>
 #include <mrepair/relax_spikes.h>
+#include <mrepair/internal/spatial_grid.h>
 #include <mrepair/internal/triangle_intersection.h>
 
 #include "fixtures.h"
@@ -1104,4 +1105,119 @@ TEST(Inspect_issue_17, bucket_items_in_two_passes_keeps_the_stable_order)
   EXPECT_EQ(first[buckets], total);
   EXPECT_EQ(order.size(), total);
   EXPECT_GT(expected[buckets - 1].size(), 50000u);
+}
+
+// ---- the spatial grid (internal/spatial_grid.h) ------------------------------
+
+// points within the cell size of p are among the 27 cells around p's, which
+// are visited in (dx, dy, dz) order with the ids of a cell ascending; a
+// brute-force count of the same cells gives the same sequence.
+TEST(Spatial_grid, near_query_visits_the_27_cells_in_order)
+{
+  namespace I = mrepair::internal;
+  std::mt19937 rng(39);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<I::Vec3> P(3000);
+  for (auto& p : P) p = I::Vec3{{u(rng), u(rng), 0.25 * u(rng)}};
+  for (std::size_t i = 0; i < 200; ++i) P.push_back(P[i * 7]);  // coincident points
+  const double r = 0.05;
+  std::vector<std::uint32_t> ids;
+  for (std::uint32_t i = P.size(); i-- > 0;)
+    if (i % 5 != 0) ids.push_back(i);  // in no order, some left out
+  const I::Spatial_grid<std::uint32_t> grid(r, ids, [&](std::uint32_t i) -> const I::Vec3& { return P[i]; });
+  ASSERT_EQ(grid.entries().size(), ids.size());
+  for (std::size_t k = 1; k < grid.entries().size(); ++k) {
+    const auto &a = grid.entries()[k - 1], &b = grid.entries()[k];
+    ASSERT_TRUE(a.c < b.c || (a.c == b.c && a.id < b.id));
+  }
+  std::vector<std::uint32_t> sorted_ids = ids;
+  std::sort(sorted_ids.begin(), sorted_ids.end());
+  std::size_t neighbours = 0;
+  for (std::uint32_t q = 0; q < P.size(); q += 3) {
+    const I::Grid_cell c = grid.cell_of(P[q]);
+    std::vector<std::uint32_t> got, expected;
+    grid.for_each_near(P[q], [&](std::uint32_t i) { got.push_back(i); });
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz)
+          for (std::uint32_t i : sorted_ids)
+            if (grid.cell_of(P[i]) == I::Grid_cell{{c[0] + dx, c[1] + dy, c[2] + dz}}) expected.push_back(i);
+    ASSERT_EQ(got, expected) << q;
+    for (std::uint32_t i : sorted_ids)
+      if (I::squared_norm(I::sub(P[i], P[q])) <= r * r) {
+        ++neighbours;
+        ASSERT_NE(std::find(got.begin(), got.end(), i), got.end()) << q << " " << i;
+      }
+  }
+  EXPECT_GT(neighbours, 1000u);  // 1627: the check is not vacuous
+}
+
+// cells whose keys collide are told apart: a table of one key per cell and
+// deliberately equal keys still finds each run.
+TEST(Spatial_grid, cell_table_tells_colliding_keys_apart)
+{
+  namespace I = mrepair::internal;
+  I::Cell_table t;
+  t.reset(2);
+  for (std::uint32_t v = 0; v < 100; ++v) t.insert(v % 3 == 0 ? 7 : 1000 + v, v);  // grows from 16 slots
+  EXPECT_EQ(t.size(), 100u);
+  for (std::uint32_t v = 0; v < 100; ++v)
+    EXPECT_EQ(t.find(v % 3 == 0 ? 7 : 1000 + v, [v](std::uint32_t x) { return x == v; }), v);
+  EXPECT_EQ(t.find(7, [](std::uint32_t x) { return x == 1; }), I::Cell_table::npos);
+  EXPECT_EQ(t.find(5), I::Cell_table::npos);
+  std::uint32_t& head = t.at(5);
+  EXPECT_EQ(head, I::Cell_table::npos);
+  head = 42;
+  EXPECT_EQ(t.find(5), 42u);
+  EXPECT_EQ(t.at(5), 42u);
+  EXPECT_EQ(t.size(), 101u);
+  // 21 bits an axis: cells 2^21 apart share a packed key, neighbours do not
+  EXPECT_EQ(I::pack_cell(3, -1, 5), I::pack_cell(3 + (1 << 21), -1, 5));
+  EXPECT_NE(I::pack_cell(3, -1, 5), I::pack_cell(3, 0, 5));
+  EXPECT_NE(I::hash_cell({{3, -1, 5}}), I::hash_cell({{3, 0, 5}}));
+}
+
+// boxes entered in the cells they span: a box query returns each box whose
+// cells meet the query's (each once per shared cell), as a scan over all does.
+TEST(Spatial_grid, box_query_finds_the_boxes_sharing_a_cell)
+{
+  namespace I = mrepair::internal;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 10.0), s(0.0, 2.5);
+  std::vector<I::Grid_box> boxes(400);
+  for (auto& b : boxes) {
+    const I::Vec3 p{{u(rng), u(rng), u(rng)}};
+    b.add(p);
+    b.add(I::Vec3{{p[0] + s(rng), p[1] + s(rng), p[2] + s(rng)}});
+  }
+  const double inverse_cell = 1.0;
+  std::vector<I::Spatial_grid<std::uint32_t>::Entry> cells;
+  for (std::uint32_t i = 0; i < boxes.size(); ++i)
+    I::Cell_range::of(boxes[i], inverse_cell).for_each([&](std::int64_t x, std::int64_t y, std::int64_t z) {
+      cells.push_back({I::Grid_cell{{x, y, z}}, i});
+    });
+  const I::Spatial_grid<std::uint32_t> grid(cells);
+  auto shared_cells = [&](const I::Cell_range& a, const I::Cell_range& b) {
+    std::size_t n = 1;
+    for (int d = 0; d < 3; ++d) {
+      const std::int64_t lo = std::max(a.lo[d], b.lo[d]), hi = std::min(a.hi[d], b.hi[d]);
+      n *= hi < lo ? 0 : std::size_t(hi - lo + 1);
+    }
+    return n;
+  };
+  for (std::size_t q = 0; q < 100; ++q) {
+    I::Grid_box query;
+    query.add(I::Vec3{{u(rng), u(rng), u(rng)}});
+    query.add(I::Vec3{{u(rng), u(rng), u(rng)}});
+    const I::Cell_range qc = I::Cell_range::of(query, inverse_cell);
+    std::map<std::uint32_t, std::size_t> got;
+    grid.for_each_in(qc, [&](std::uint32_t i) { ++got[i]; });
+    for (std::uint32_t i = 0; i < boxes.size(); ++i) {
+      const std::size_t n = shared_cells(qc, I::Cell_range::of(boxes[i], inverse_cell));
+      EXPECT_EQ(got.count(i) ? got[i] : 0u, n) << q << " " << i;
+      if (boxes[i].meets(query)) {
+        EXPECT_GT(n, 0u);  // a meeting box shares a cell
+      }
+    }
+  }
 }

@@ -313,6 +313,58 @@ TYPED_TEST(Io_mesh, mesh_writes_the_bytes_of_its_soup)
   }
 }
 
+// The one halfedge builder (internal/halfedge_builder.h) through the file
+// reader's adapter: a quad and four triangles around an interior vertex, a
+// point no polygon uses. Unused points get no vertex, a face's halfedge is
+// its first corner's, a vertex's the last corner entering it, or on the
+// border the border halfedge entering it.
+TYPED_TEST(Io_mesh, halfedge_builder_wires_the_corners_in_order)
+{
+  using Mesh = typename TypeParam::Mesh;
+  namespace IO = mrepair::internal::io;
+  const std::vector<Point> P = {Point(0, 0, 0), Point(1, 0, 0), Point(2, 0, 0), Point(0, 1, 0),
+                                Point(1, 1, 0), Point(2, 1, 0), Point(1, 2, 0), Point(5, 5, 5)};
+  const std::vector<std::vector<std::int64_t>> polygons = {{0, 1, 4, 3}, {1, 2, 5}, {1, 5, 4}, {3, 4, 6}, {4, 5, 6}};
+  std::vector<std::int64_t> indices;
+  std::vector<std::size_t> starts = {0};
+  for (const auto& p : polygons) {
+    indices.insert(indices.end(), p.begin(), p.end());
+    starts.push_back(indices.size());
+  }
+  IO::Soup_topology t;
+  std::string why;
+  ASSERT_TRUE(t.compute(P.size(), indices.data(), starts.data(), polygons.size(), why)) << why;
+  Mesh m;
+  auto vpm = get(CGAL::vertex_point, m);
+  IO::build_mesh(t, P.size(), indices.data(), starts.data(), polygons.size(), m,
+                 [&](auto v, std::size_t i) { put(vpm, v, P[i]); });
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_EQ(vertices(m).size(), 7u);  // point 7 is not used
+  EXPECT_EQ(faces(m).size(), 5u);
+  EXPECT_EQ(edges(m).size(), 11u);
+  auto index_of = [&](typename boost::graph_traits<Mesh>::vertex_descriptor v) {
+    return std::size_t(std::find(P.begin(), P.end(), get(vpm, v)) - P.begin());
+  };
+  std::size_t f_index = 0;
+  for (auto f : faces(m)) {
+    const auto& p = polygons[f_index++];
+    const auto h = halfedge(f, m);
+    EXPECT_EQ(index_of(source(h, m)), std::size_t(p[0]));
+    EXPECT_EQ(index_of(target(h, m)), std::size_t(p[1]));
+    EXPECT_EQ(CGAL::halfedges_around_face(h, m).size(), p.size());
+  }
+  for (auto v : vertices(m)) {
+    const auto h = halfedge(v, m);
+    EXPECT_EQ(target(h, m), v);
+    if (index_of(v) == 4) {  // interior: the last corner entering it, 6 -> 4
+      EXPECT_FALSE(is_border(h, m));
+      EXPECT_EQ(index_of(source(h, m)), 6u);
+    } else {
+      EXPECT_TRUE(is_border(h, m)) << index_of(v);
+    }
+  }
+}
+
 // ---- soups ---------------------------------------------------------------------
 
 // The writers' validating pass runs in chunks: the counts are those of the

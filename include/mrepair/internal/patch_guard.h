@@ -17,6 +17,7 @@
 #ifndef MREPAIR_INTERNAL_PATCH_GUARD_H
 #define MREPAIR_INTERNAL_PATCH_GUARD_H
 
+#include <mrepair/internal/spatial_grid.h>
 #include <mrepair/internal/triangle_intersection.h>
 #include <mrepair/internal/utility.h>
 
@@ -29,7 +30,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <unordered_map>
 #include <map>
 #include <set>
 #include <vector>
@@ -45,41 +45,7 @@ class Patch_intersection_guard
   using halfedge_descriptor = typename GT::halfedge_descriptor;
   using face_descriptor = typename GT::face_descriptor;
 
-  struct Box
-  {
-    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    void add(const Vec3& p)
-    {
-      for (int d = 0; d < 3; ++d) {
-        lo[d] = std::min(lo[d], p[d]);
-        hi[d] = std::max(hi[d], p[d]);
-      }
-    }
-    void add(const Box& b)
-    {
-      for (int d = 0; d < 3; ++d) {
-        lo[d] = std::min(lo[d], b.lo[d]);
-        hi[d] = std::max(hi[d], b.hi[d]);
-      }
-    }
-    bool empty() const { return !(lo[0] <= hi[0]); }
-    bool meets(const Box& b) const
-    {
-      for (int d = 0; d < 3; ++d)
-        if (b.hi[d] < lo[d] || hi[d] < b.lo[d]) return false;
-      return true;
-    }
-    bool contains(const Box& b) const
-    {
-      for (int d = 0; d < 3; ++d)
-        if (b.lo[d] < lo[d] || hi[d] < b.hi[d]) return false;
-      return true;
-    }
-    double extent() const
-    {
-      return std::max(hi[0] - lo[0], std::max(hi[1] - lo[1], hi[2] - lo[2]));
-    }
-  };
+  using Box = Grid_box;
 
   // a face read once: its vertices (the keys of what two faces share), its
   // corners as exact-predicate points, its box; `finite` false (a non-finite
@@ -126,40 +92,6 @@ class Patch_intersection_guard
     return t;
   }
 
-  // the cells of size `cell` a box spans, and their hashed keys
-  struct Cells
-  {
-    std::int64_t lo[3], hi[3];
-    double count = 1;
-    template <typename F>
-    void for_each(const F& f) const
-    {
-      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
-        for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-          for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
-            f(std::uint64_t(x) * 73856093u ^ std::uint64_t(y) * 19349663u ^ std::uint64_t(z) * 83492791u);
-    }
-  };
-  // `inverse_cell`: 1 / the cell size (a product per coordinate, not a
-  // division: this runs for every face of the mesh)
-  static Cells cells_of(const Box& b, double inverse_cell)
-  {
-    Cells c;
-    for (int d = 0; d < 3; ++d) {
-      const double lo = std::floor(b.lo[d] * inverse_cell), hi = std::floor(b.hi[d] * inverse_cell);
-      if (!(std::abs(lo) < 1e18 && std::abs(hi) < 1e18)) {  // beyond the integers: no cells
-        c.lo[0] = c.lo[1] = c.lo[2] = 0;
-        c.hi[0] = c.hi[1] = c.hi[2] = -1;
-        c.count = HUGE_VAL;
-        return c;
-      }
-      c.lo[d] = std::int64_t(lo);
-      c.hi[d] = std::int64_t(hi);
-      c.count *= hi - lo + 1;
-    }
-    return c;
-  }
-
   static bool meet(const Tri& a, const Tri& b)
   {
     return a.finite && b.finite && a.box.meets(b.box) && triangles_intersect(a.v, a.p, b.v, b.p);
@@ -194,25 +126,19 @@ public:
     // spanning too many cells is matched against every face instead
     std::nth_element(extents.begin(), extents.begin() + extents.size() / 2, extents.end());
     const double inverse_cell = 1. / std::max(extents[extents.size() / 2], 1e-300);
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
+    std::vector<typename Spatial_grid<std::uint32_t>::Entry> cells;
     std::vector<std::uint32_t> big;
     for (std::size_t i = 0; i < loops.size(); ++i) {
       const Box& b = loop_boxes_[i];
       if (b.empty()) continue;
-      const Cells c = cells_of(b, inverse_cell);
+      const Cell_range c = Cell_range::of(b, inverse_cell);
       if (!(c.count <= 512)) { big.push_back(std::uint32_t(i)); continue; }
-      c.for_each([&](std::uint64_t k) { grid[k].push_back(std::uint32_t(i)); });
+      c.for_each([&](std::int64_t x, std::int64_t y, std::int64_t z) {
+        cells.push_back({Grid_cell{{x, y, z}}, std::uint32_t(i)});
+      });
     }
-    // most faces are far from every loop: one bit per hashed cell turns them
-    // away before the map lookup (the scan of a 1M-face mesh took 0.1 s)
-    std::size_t filter_bits = 1 << 12;
-    while (filter_bits < 16 * grid.size() && filter_bits < (std::size_t(1) << 26)) filter_bits <<= 1;
-    std::vector<std::uint64_t> filter(filter_bits / 64, 0);
-    auto filter_bit = [&](std::uint64_t k) { return std::size_t((k * 0x9E3779B97F4A7C15ull) >> 20) & (filter_bits - 1); };
-    for (const auto& cell_entry : grid) {
-      const std::size_t bit = filter_bit(cell_entry.first);
-      filter[bit / 64] |= std::uint64_t(1) << (bit % 64);
-    }
+    const bool gridded = !cells.empty();
+    const Spatial_grid<std::uint32_t> grid(std::move(cells));
     // The faces are matched in blocks, in parallel where the mesh allows it
     // (reads only), and appended block by block: the lists do not depend on
     // the threads. Loop boxes that overlap much of a large model would make
@@ -235,24 +161,19 @@ public:
         const std::size_t before = out.size();
         for (std::uint32_t i : big)
           if (loop_boxes_[i].meets(fb)) out.emplace_back(i, f);
-        const Cells c = cells_of(fb, inverse_cell);
+        const Cell_range c = Cell_range::of(fb, inverse_cell);
         if (!(c.count <= 64)) {  // a face far larger than the loops: every loop box
           for (std::size_t i = 0; i < loop_boxes_.size(); ++i)
             if (!loop_boxes_[i].empty() && loop_boxes_[i].meets(fb) &&
                 std::find(big.begin(), big.end(), std::uint32_t(i)) == big.end())
               out.emplace_back(std::uint32_t(i), f);
-        } else if (!grid.empty()) {
+        } else if (gridded) {
           seen.clear();
-          c.for_each([&](std::uint64_t k) {
-            const std::size_t bit = filter_bit(k);
-            if (!(filter[bit / 64] >> (bit % 64) & 1)) return;
-            auto it = grid.find(k);
-            if (it == grid.end()) return;
-            for (std::uint32_t i : it->second)
-              if (loop_boxes_[i].meets(fb) && std::find(seen.begin(), seen.end(), i) == seen.end()) {
-                seen.push_back(i);
-                out.emplace_back(i, f);
-              }
+          grid.for_each_in(c, [&](std::uint32_t i) {
+            if (loop_boxes_[i].meets(fb) && std::find(seen.begin(), seen.end(), i) == seen.end()) {
+              seen.push_back(i);
+              out.emplace_back(i, f);
+            }
           });
         }
         // most faces add nothing: no shared write for them (the atomic add

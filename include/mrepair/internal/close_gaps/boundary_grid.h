@@ -2,6 +2,8 @@
 #ifndef MREPAIR_INTERNAL_CLOSE_GAPS_BOUNDARY_GRID_H
 #define MREPAIR_INTERNAL_CLOSE_GAPS_BOUNDARY_GRID_H
 
+#include <mrepair/internal/spatial_grid.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -17,9 +19,10 @@ namespace internal {
 // the caller validates candidates (lazy deletion), which keeps each update
 // O(length / cell) without bookkeeping of where an edge was registered.
 //
-// Flat storage: an open-addressing table maps a cell to the head of a chain
-// of items in one pool (no allocation per cell; the gap closing inserts and
-// queries a few cells per contraction, so hashing is the hot path).
+// Flat storage: the grid's Cell_table (internal/spatial_grid.h) maps a cell
+// to the head of a chain of items in one pool (no allocation per cell; the
+// gap closing inserts and queries a few cells per contraction, so hashing is
+// the hot path).
 class Segment_grid
 {
 public:
@@ -43,9 +46,7 @@ public:
     items_.clear();
     next_.clear();
     long_items_.clear();
-    std::size_t cap = 64;
-    while (cap < 2 * expected) cap <<= 1;
-    reset_table(cap);
+    table_.reset(std::max<std::size_t>(expected, 32));
   }
   double cell() const { return cell_; }
   std::size_t size() const { return items_.size(); }
@@ -74,7 +75,7 @@ public:
       for (long x = lo[0]; x <= hi[0]; ++x)
         for (long y = lo[1]; y <= hi[1]; ++y)
           for (long z = lo[2]; z <= hi[2]; ++z) {
-            std::uint32_t& head = slot(pack(x, y, z));
+            std::uint32_t& head = table_.at(pack_cell(x, y, z));
             if (head != npos) {
               const Item& h = items_[head];
               if (h.key == key && h.a == a && h.b == b) continue;  // pieces share cells
@@ -126,7 +127,7 @@ public:
         gap2[d][std::size_t(c - lo[d])] = g > 0 ? g * g : 0.0;
       }
     auto visit = [&](long x, long y, long z) {
-      for (std::uint32_t i = find(pack(x, y, z)); i != npos; i = next_[i]) f(items_[i]);
+      for (std::uint32_t i = table_.find(pack_cell(x, y, z)); i != npos; i = next_[i]) f(items_[i]);
     };
     // the cell of p first: a near partner found there rules out most others
     visit(at[0], at[1], at[2]);
@@ -168,7 +169,7 @@ public:
     for (long x = lo[0]; x <= hi[0]; ++x)
       for (long y = lo[1]; y <= hi[1]; ++y)
         for (long z = lo[2]; z <= hi[2]; ++z)
-          for (std::uint32_t i = find(pack(x, y, z)); i != npos; i = next_[i]) f(items_[i]);
+          for (std::uint32_t i = table_.find(pack_cell(x, y, z)); i != npos; i = next_[i]) f(items_[i]);
   }
 
 private:
@@ -192,18 +193,11 @@ private:
       if (meets(it, lo, hi)) f(it);
   }
 
-  static constexpr std::uint32_t npos = 0xffffffffu;
+  static constexpr std::uint32_t npos = Cell_table::npos;
   static constexpr double max_pieces = 1024;  // cells along one registered segment
-  static constexpr std::uint64_t empty = ~std::uint64_t(0);  // pack() never yields it (63 bits)
-  struct Slot
-  {
-    std::uint64_t cell;
-    std::uint32_t head;
-  };
-
   static double sq(double x) { return x * x; }
   // clamped before the cast (a double beyond long's range is undefined
-  // behaviour); pack() keeps 21 bits anyway, so far cells share slots
+  // behaviour); pack_cell() keeps 21 bits anyway, so far cells share slots
   long index(double x, int d) const
   {
     const double c = std::floor((x - origin_[d]) * inv_);
@@ -211,62 +205,9 @@ private:
     if (!(c > -limit)) return c < 0 ? -long(4.6e18) : 0;  // NaN: cell 0
     return c < limit ? static_cast<long>(c) : long(4.6e18);
   }
-  static std::uint64_t pack(long x, long y, long z)
-  {
-    const std::uint64_t m = (1u << 21) - 1;
-    return ((std::uint64_t(x) & m) << 42) | ((std::uint64_t(y) & m) << 21) | (std::uint64_t(z) & m);
-  }
-  std::size_t hash(std::uint64_t k) const { return std::size_t((k * 0x9E3779B97F4A7C15ull) >> shift_); }
-
-  void reset_table(std::size_t cap)
-  {
-    slots_.assign(cap, Slot{empty, npos});
-    mask_ = cap - 1;
-    shift_ = 64;
-    for (std::size_t c = cap; c > 1; c >>= 1) --shift_;
-    used_ = 0;
-  }
-  std::uint32_t find(std::uint64_t k) const
-  {
-    for (std::size_t i = hash(k);; i = (i + 1) & mask_) {
-      const Slot& s = slots_[i];
-      if (s.cell == k) return s.head;
-      if (s.cell == empty) return npos;
-    }
-  }
-  // the chain head of cell k, created empty when missing.
-  std::uint32_t& slot(std::uint64_t k)
-  {
-    if (2 * (used_ + 1) > slots_.size()) grow();
-    for (std::size_t i = hash(k);; i = (i + 1) & mask_) {
-      Slot& s = slots_[i];
-      if (s.cell == k) return s.head;
-      if (s.cell == empty) {
-        s.cell = k;
-        ++used_;
-        return s.head;
-      }
-    }
-  }
-  void grow()
-  {
-    std::vector<Slot> old;
-    old.swap(slots_);
-    reset_table(old.size() * 2);
-    for (const Slot& s : old)
-      if (s.cell != empty) {
-        std::size_t i = hash(s.cell);
-        while (slots_[i].cell != empty) i = (i + 1) & mask_;
-        slots_[i] = s;
-        ++used_;
-      }
-  }
-
   P origin_{{0, 0, 0}};
   double cell_ = 1, inv_ = 1;
-  std::vector<Slot> slots_;
-  std::size_t mask_ = 0, used_ = 0;
-  int shift_ = 64;
+  Cell_table table_;  // cell -> newest item registered in it
   std::vector<Item> items_;
   std::vector<std::uint32_t> next_;  // chain of items in a cell, newest first
   std::vector<Item> long_items_;     // segments too long for cells: every query reads them

@@ -4,6 +4,7 @@
 
 #include <mrepair/internal/inspect/parallel.h>
 #include <mrepair/internal/inspect/surface_arrays.h>
+#include <mrepair/internal/spatial_grid.h>
 #include <mrepair/internal/triangle_intersection.h>
 
 #include <CGAL/Bbox_3.h>
@@ -141,11 +142,13 @@ inline void certify_flat_stars(Surface_arrays& a)
 // Only `eligible` faces take part (triangles with finite, non-collinear corners:
 // CGAL reports a degenerate face only as the pair (f, f)).
 //
-// Broad phase: a uniform grid of cells twice the mean face extent, built by a
-// counting sort of (cell, face) entries on a cell hash; each candidate pair is
-// tested in the one cell that holds the lower corner of the overlap of the
-// two boxes, so it is tested once. The rare faces spanning many cells are
-// matched by CGAL's box_intersection_d instead. Cells are processed in parallel.
+// Broad phase: a uniform grid of cells twice the mean face extent (the
+// spatial grid's cells and keys, internal/spatial_grid.h), built by a
+// parallel counting sort of (cell, face) entries on a cell hash; each
+// candidate pair is tested in the one cell that holds the lower corner of
+// the overlap of the two boxes (owns_pair), so it is tested once. The rare
+// faces spanning many cells are matched by CGAL's box_intersection_d
+// instead. Cells are processed in parallel.
 // the float next to `f` upwards or downwards: std::nextafter, inlined (a
 // call per box side was a fifth of the boxes' time)
 inline float float_step(float f, bool up)
@@ -297,7 +300,10 @@ public:
       if (!(t > 0)) return std::uint64_t(0);
       return static_cast<std::uint64_t>(std::min(t, double(1 << 20)));
     };
-    auto key = [](std::uint64_t i, std::uint64_t j, std::uint64_t k) { return (i << 42) | (j << 21) | k; };
+    // cells are below 2^21 on each axis: pack_cell keys them one to one
+    auto key = [](std::uint64_t i, std::uint64_t j, std::uint64_t k) {
+      return pack_cell(std::int64_t(i), std::int64_t(j), std::int64_t(k));
+    };
 
     // cells covered by each face; faces covering many cells are "big"
     const std::uint64_t big_cells = 64;
@@ -366,11 +372,6 @@ public:
           return true;
       return false;
     };
-    auto overlap = [](const float* x, const float* y) {
-      for (int d = 0; d < 3; ++d)
-        if (x[d] > y[3 + d] || y[d] > x[3 + d]) return false;
-      return true;
-    };
     auto add = [list_crossing, list_all](Self_intersection_counts& c, int contact, Inspect_index f, Inspect_index g) {
       c.pairs += contact != 0;
       c.touching += contact == 2;
@@ -409,13 +410,11 @@ public:
                for (auto p = r; p != r_end; ++p)
                  for (auto q = p + 1; q != r_end; ++q) {
                    const float *x = p->b, *y = q->b;
-                   if (!overlap(x, y)) continue;
+                   if (!flat_boxes_meet(x, y)) continue;
                    // most overlapping pairs of a scan share a certified vertex:
                    // that test is cheaper than finding the pair's cell
                    if (certified(*p, *q)) continue;
-                   if (key(cell(std::max(x[0], y[0]), 0), cell(std::max(x[1], y[1]), 1),
-                           cell(std::max(x[2], y[2]), 2)) != ck)
-                     continue; // tested in another cell
+                   if (!owns_pair(ck, x, y, cell)) continue;  // tested in another cell
                    add(s, contact(F[p->face], F[q->face]), F[p->face], F[q->face]);
                  }
                r = r_end;

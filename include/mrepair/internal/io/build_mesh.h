@@ -6,13 +6,13 @@
 // CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh checks
 // (polygons of >= 3 distinct vertices, every directed edge used once, every
 // vertex's faces forming one fan) with sorted per-vertex halfedge lists
-// instead of a std::set, then wires the halfedge structure directly through
-// the MutableFaceGraph primitives (add_edge, add_face, set_next, ...), which
-// is much cheaper than Euler::add_face per polygon. Points not used by any
+// instead of a std::set, then builds the mesh with the halfedge builder
+// (internal/halfedge_builder.h). Points not used by any
 // polygon are left out (polygon_soup_to_polygon_mesh would add them as
 // isolated vertices, which CGAL 5.5's is_valid_polygon_mesh rejects and
 // mrepair never outputs).
 
+#include <mrepair/internal/halfedge_builder.h>
 #include <mrepair/internal/utility.h>
 
 #include <boost/graph/graph_traits.hpp>
@@ -37,7 +37,7 @@ class Soup_topology
   };
 
 public:
-  static constexpr std::size_t none = static_cast<std::size_t>(-1);
+  static constexpr std::size_t none = no_corner;
   std::vector<std::size_t> next, prev, opposite;  // per corner
   std::vector<std::size_t> out_start, out;        // corners leaving each vertex (CSR)
 
@@ -206,77 +206,37 @@ private:
 };
 
 /// builds `g` (assumed empty) from a soup whose topology `t` was computed
-/// successfully; `put_point(vpm, v, i)` stores point i at vertex v.
+/// successfully; `put_point(v, i)` stores point i at vertex v.
 template <class PolygonMesh, class PutPoint>
 void build_mesh(const Soup_topology& t, std::size_t num_points, const std::int64_t* indices,
                 const std::size_t* starts, std::size_t num_polygons, PolygonMesh& g,
                 PutPoint put_point)
 {
-  using GT = boost::graph_traits<PolygonMesh>;
-  using vertex_descriptor = typename GT::vertex_descriptor;
-  using halfedge_descriptor = typename GT::halfedge_descriptor;
-  using face_descriptor = typename GT::face_descriptor;
-  const std::size_t none = Soup_topology::none;
-  const std::size_t nc = starts[num_polygons];
-
+  // the soup as a corner table for the halfedge builder
+  struct Corners
+  {
+    const Soup_topology& t;
+    std::size_t np;
+    const std::int64_t* indices;
+    const std::size_t* starts;
+    std::size_t nf;
+    std::size_t num_points() const { return np; }
+    std::size_t num_faces() const { return nf; }
+    std::size_t num_corners() const { return starts[nf]; }
+    std::size_t begin(std::size_t f) const { return starts[f]; }
+    std::size_t end(std::size_t f) const { return starts[f + 1]; }
+    std::size_t source(std::size_t c) const { return static_cast<std::size_t>(indices[c]); }
+    std::size_t next(std::size_t c) const { return t.next[c]; }
+    std::size_t opposite(std::size_t c) const { return t.opposite[c]; }
+    // only points used by a polygon: no isolated vertex (5.5's validity check rejects one)
+    bool used(std::size_t v) const { return t.out_start[v + 1] != t.out_start[v]; }
+  };
+  const Corners m{t, num_points, indices, starts, num_polygons};
   std::size_t num_edges = 0, num_used = 0;
-  for (std::size_t i = 0; i < num_points; ++i) num_used += t.out_start[i + 1] != t.out_start[i];
-  for (std::size_t c = 0; c < nc; ++c)
-    if (t.opposite[c] == none || c < t.opposite[c]) ++num_edges;
-  reserve(g, static_cast<typename GT::vertices_size_type>(num_used),
-                static_cast<typename GT::edges_size_type>(num_edges),
-                static_cast<typename GT::faces_size_type>(num_polygons));
-
-  // only points used by a polygon: no isolated vertex (5.5's validity check rejects one)
-  std::vector<vertex_descriptor> vd(num_points, GT::null_vertex());
-  for (std::size_t i = 0; i < num_points; ++i) {
-    if (t.out_start[i + 1] == t.out_start[i]) continue;
-    vd[i] = add_vertex(g);
-    put_point(vd[i], i);
-  }
-  // one edge per corner pair; the border halfedge of a boundary corner in `border`
-  std::vector<halfedge_descriptor> hd(nc);
-  std::vector<halfedge_descriptor> border(nc, GT::null_halfedge());
-  for (std::size_t c = 0; c < nc; ++c) {
-    const std::size_t o = t.opposite[c];
-    if (o != none && o < c) continue;
-    halfedge_descriptor h = halfedge(add_edge(g), g);
-    hd[c] = h;
-    if (o != none)
-      hd[o] = opposite(h, g);
-    else
-      border[c] = opposite(h, g);
-  }
-  auto vertex_of = [&](std::size_t c) { return vd[static_cast<std::size_t>(indices[c])]; };
-  for (std::size_t f = 0; f < num_polygons; ++f) {
-    face_descriptor fd = add_face(g);
-    set_halfedge(fd, hd[starts[f]], g);
-    for (std::size_t c = starts[f]; c < starts[f + 1]; ++c) {
-      halfedge_descriptor h = hd[c];
-      set_target(h, vertex_of(t.next[c]), g);
-      set_next(h, hd[t.next[c]], g);
-      set_face(h, fd, g);
-      set_halfedge(vertex_of(t.next[c]), h, g);
-    }
-  }
-  // border halfedges: the one of corner c (u -> w) runs w -> u; its next leaves
-  // u along the border, i.e. is the border halfedge of the corner entering u
-  // that has no opposite (the start of u's fan)
-  for (std::size_t c = 0; c < nc; ++c) {
-    if (border[c] == GT::null_halfedge()) continue;
-    const std::size_t u = static_cast<std::size_t>(indices[c]);
-    const halfedge_descriptor b = border[c];
-    set_target(b, vd[u], g);
-    set_face(b, GT::null_face(), g);
-    // the fan of u ends at c; walk back to its start: the corner at u whose
-    // incoming halfedge has no opposite
-    std::size_t s = none;
-    for (std::size_t k = t.out_start[u]; k < t.out_start[u + 1]; ++k)
-      if (t.opposite[t.prev[t.out[k]]] == none) s = t.out[k];
-    // s exists: u has a border corner, so its fan is a path
-    set_next(b, border[t.prev[s]], g);
-    set_halfedge(vd[u], b, g);  // border vertices point to a border halfedge
-  }
+  for (std::size_t i = 0; i < num_points; ++i) num_used += m.used(i);
+  for (std::size_t c = 0; c < m.num_corners(); ++c)
+    if (t.opposite[c] == Soup_topology::none || c < t.opposite[c]) ++num_edges;
+  build_halfedge_mesh(g, m, Element_counts{num_used, num_edges, num_polygons}, put_point);
 }
 
 } // namespace io

@@ -22,11 +22,12 @@
 //              edge or vertex
 //   outward    optional: closed components inside no other get positive
 //              volume; nested ones keep their input orientation (ray parity)
-//   build      halfedges written directly from the partner table
+//   build      the halfedge builder (halfedge_builder.h) reads the partner table
 
+#include <mrepair/internal/halfedge_builder.h>
 #include <mrepair/internal/inspect/parallel.h>
-#include <mrepair/internal/point_grid.h>
 #include <mrepair/internal/polygon_triangulation.h>
+#include <mrepair/internal/spatial_grid.h>
 #include <mrepair/internal/utility.h>
 #include <mrepair/stitch_soup_result.h>
 
@@ -259,7 +260,7 @@ public:
   template <class F>
   void near_pairs(const std::vector<Idx>& ids, double eps, F f)
   {
-    const Point_grid<Idx> grid(cell_size(eps), ids, [&](Idx i) -> const Vec& { return P[i]; });
+    const Spatial_grid<Idx> grid(cell_size(eps), ids, [&](Idx i) -> const Vec& { return P[i]; });
     const double eps2 = eps * eps;
     for (const auto& e : grid.entries()) {
       const Idx a = e.id;
@@ -923,7 +924,7 @@ public:
   // way round; found through a grid over the sides' source points
   std::vector<Side_pair> stitch_candidates(const std::vector<Idx>& bnd, double eps) const
   {
-    const Point_grid<Idx> grid(cell_size(eps), bnd, [&](Idx slot) -> const Vec& { return P[src(slot)]; });
+    const Spatial_grid<Idx> grid(cell_size(eps), bnd, [&](Idx slot) -> const Vec& { return P[src(slot)]; });
     std::vector<Side_pair> cand;
     const double eps2 = eps * eps;
     auto scan = [&](Idx s, const Vec& near_src, const Vec& near_dst, bool same) {
@@ -1284,64 +1285,30 @@ public:
   }
 
   // ---------------------------------------------------------------- build
-  // Writes the faces into `out` (cleared first) directly as halfedges: every
-  // partnered side pair is one edge, every other side gets a border opposite
-  // whose next is the border leaving its target (unique: one fan per vertex).
+  // Writes the faces into `out` (cleared first) with the halfedge builder:
+  // every partnered side pair is one edge, every other side a border edge.
   template <class PolygonMesh, class VPM>
   void build(PolygonMesh& out, VPM vpm) const
   {
-    using GT = boost::graph_traits<PolygonMesh>;
-    using vertex_descriptor = typename GT::vertex_descriptor;
-    using halfedge_descriptor = typename GT::halfedge_descriptor;
-    using face_descriptor = typename GT::face_descriptor;
     using Point = typename boost::property_traits<VPM>::value_type;
+    // the triangles as a corner table: side s is corner s
+    struct Corners
+    {
+      const Soup_repairer& r;
+      std::size_t num_points() const { return r.P.size(); }
+      std::size_t num_faces() const { return r.T.size(); }
+      std::size_t num_corners() const { return 3 * r.T.size(); }
+      std::size_t begin(std::size_t t) const { return 3 * t; }
+      std::size_t end(std::size_t t) const { return 3 * t + 3; }
+      std::size_t source(std::size_t s) const { return r.src(Idx(s)); }
+      std::size_t next(std::size_t s) const { return dst_corner(Idx(s)); }
+      std::size_t opposite(std::size_t s) const { return r.partner[s] == none ? no_corner : r.partner[s]; }
+      bool used(std::size_t) const { return true; }
+    };
     CGAL::clear(out);
-    const std::size_t F = T.size(), S = 3 * F, V = P.size();
-    std::size_t nb = count_boundary();
-    const Element_counts room = with_room_for_fills(V, (S + nb) / 2, F);
-    reserve(out, static_cast<typename GT::vertices_size_type>(room.vertices),
-            static_cast<typename GT::edges_size_type>(room.edges),
-            static_cast<typename GT::faces_size_type>(room.faces));
-    std::vector<vertex_descriptor> vd(V);
-    for (std::size_t v = 0; v < V; ++v) {
-      vd[v] = add_vertex(out);
-      put(vpm, vd[v], Point(P[v][0], P[v][1], P[v][2]));
-    }
-    std::vector<face_descriptor> fd(F);
-    for (std::size_t t = 0; t < F; ++t) fd[t] = add_face(out);
-    std::vector<halfedge_descriptor> he(S);
-    std::vector<halfedge_descriptor> border_out(V, GT::null_halfedge());
-    for (std::size_t s = 0; s < S; ++s) {
-      const Idx p = partner[s];
-      if (p != none && p < s) continue;
-      halfedge_descriptor h = halfedge(add_edge(out), out);
-      he[s] = h;
-      halfedge_descriptor o = opposite(h, out);
-      if (p != none) {
-        he[p] = o;
-      } else {
-        // border from dst(s) to src(s)
-        set_target(o, vd[src(Idx(s))], out);
-        set_face(o, GT::null_face(), out);
-        border_out[dst(Idx(s))] = o;
-      }
-    }
-    for (std::size_t s = 0; s < S; ++s) {
-      const Idx t = Idx(s / 3);
-      set_target(he[s], vd[dst(Idx(s))], out);
-      set_face(he[s], fd[t], out);
-      set_next(he[s], he[dst_corner(Idx(s))], out);
-      set_halfedge(vd[dst(Idx(s))], he[s], out);
-    }
-    for (std::size_t t = 0; t < F; ++t) set_halfedge(fd[t], he[3 * t], out);
-    // border next pointers: the border ending at src(s) continues with the border leaving src(s)
-    for (std::size_t s = 0; s < S; ++s) {
-      if (partner[s] != none) continue;
-      halfedge_descriptor b = opposite(he[s], out);
-      const Idx a = src(Idx(s));
-      set_next(b, border_out[a], out);
-      set_halfedge(vd[a], b, out);
-    }
+    const std::size_t F = T.size(), S = 3 * F;
+    build_halfedge_mesh(out, Corners{*this}, with_room_for_fills(P.size(), (S + count_boundary()) / 2, F),
+                        [&](auto v, std::size_t i) { put(vpm, v, Point(P[i][0], P[i][1], P[i][2])); });
   }
 };
 
