@@ -7,6 +7,8 @@
 #ifndef MREPAIR_TOOLS_JSON_LITE_H
 #define MREPAIR_TOOLS_JSON_LITE_H
 
+#include <mrepair/report.h>
+
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -57,28 +59,7 @@ struct Json
     return j;
   }
 
-  static std::string quote(const std::string& s)
-  {
-    std::string out = "\"";
-    for (unsigned char c : s) {
-      switch (c) {
-        case '"': out += "\\\""; break;
-        case '\\': out += "\\\\"; break;
-        case '\n': out += "\\n"; break;
-        case '\r': out += "\\r"; break;
-        case '\t': out += "\\t"; break;
-        default:
-          if (c < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", c);
-            out += buf;
-          } else {
-            out += static_cast<char>(c);
-          }
-      }
-    }
-    return out + "\"";
-  }
+  static std::string quote(const std::string& s) { return "\"" + json_escape(s) + "\""; }
 
   /// one line, `{"a": 1, "b": [2, 3]}`.
   std::string dump() const

@@ -25,6 +25,32 @@
 namespace mrepair {
 
 /// \ingroup mrepair_core
+/// `in` with JSON's string escapes (no quotes added). `script_safe` also
+/// writes '<' as \u003c, so that the JSON can sit in an HTML <script> element.
+/// The one JSON escaper of the library, the CLI and the HTML report.
+inline std::string json_escape(const std::string& in, bool script_safe = false)
+{
+  std::string out;
+  out.reserve(in.size());
+  for (char c : in) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20 || (script_safe && c == '<')) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+          out += buf;
+        } else
+          out += c;
+    }
+  }
+  return out;
+}
+
+/// \ingroup mrepair_core
 /// ordered key/value tree rendered as text or JSON.
 class Report
 {
@@ -43,26 +69,6 @@ class Report
     std::ostringstream s;
     s << std::setprecision(10) << v;
     return s.str();
-  }
-  static std::string escape(const std::string& in)
-  {
-    std::string out;
-    for (char c : in) {
-      switch (c) {
-        case '"': out += "\\\""; break;
-        case '\\': out += "\\\\"; break;
-        case '\n': out += "\\n"; break;
-        case '\t': out += "\\t"; break;
-        default:
-          if (static_cast<unsigned char>(c) < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", c);
-            out += buf;
-          } else
-            out += c;
-      }
-    }
-    return out;
   }
   Entry& slot(const std::string& key)
   {
@@ -171,11 +177,11 @@ public:
     std::string out = "{";
     for (std::size_t i = 0; i < entries_.size(); ++i) {
       const Entry& e = entries_[i];
-      out += (i ? ",\n" : "\n") + pad + "\"" + escape(e.key) + "\": ";
+      out += (i ? ",\n" : "\n") + pad + "\"" + json_escape(e.key) + "\": ";
       if (e.child)
         out += e.child->to_json(indent + 2);
       else if (e.quoted)
-        out += "\"" + escape(e.text) + "\"";
+        out += "\"" + json_escape(e.text) + "\"";
       else
         out += e.text;
     }

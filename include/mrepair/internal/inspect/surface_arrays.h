@@ -150,6 +150,22 @@ inline void build_soup_edges(Surface_arrays& a)
   a.edge_corners.swap(sorted);
 }
 
+// A soup polygon the inspection keeps: at least 3 indices, all in [0, nv).
+template <typename Polygon>
+bool is_kept_soup_polygon(const Polygon& poly, std::size_t nv)
+{
+  std::size_t k = 0;
+  for (const auto& idx : poly) {
+    using I = std::decay_t<decltype(idx)>;
+    if constexpr (std::is_signed<I>::value) {
+      if (idx < 0) return false;
+    }
+    if (static_cast<std::size_t>(idx) >= nv) return false;
+    ++k;
+  }
+  return k >= 3;
+}
+
 // Flattens a polygon soup. Polygons with fewer than 3 vertices or an index out
 // of [0, points.size()) are left out and counted in `invalid_polygons`.
 // Returns false when the soup is too large for 32-bit indices.
@@ -177,17 +193,7 @@ bool build_soup_arrays(const PointRange& points, const PolygonRange& polygons,
   a.corner_v.reserve(3 * static_cast<std::size_t>(
                              std::distance(std::begin(polygons), std::end(polygons))));
   for (const auto& poly : polygons) {
-    std::size_t k = 0;
-    bool ok = true;
-    for (const auto& idx : poly) {
-      using I = std::decay_t<decltype(idx)>;
-      if constexpr (std::is_signed<I>::value) {
-        if (idx < 0) ok = false;
-      }
-      if (ok && static_cast<std::size_t>(idx) >= nv) ok = false;
-      ++k;
-    }
-    if (!ok || k < 3) {
+    if (!is_kept_soup_polygon(poly, nv)) {
       ++invalid_polygons;
       continue;
     }

@@ -8,6 +8,7 @@
 // above a face budget. Shared by the CLI (`--html`) and the Python module.
 
 #include <mrepair/defect_locations.h>
+#include <mrepair/internal/inspect/surface_arrays.h>
 #include <mrepair/internal/utility.h>
 
 #include <CGAL/boost/graph/helpers.h>
@@ -55,17 +56,7 @@ Indexed_faces indexed_faces_of_soup(const PointRange& points, const PolygonRange
     m.xyz.push_back(CGAL::to_double(p.z()));
   }
   for (const auto& poly : polygons) {
-    std::size_t k = 0;
-    bool ok = true;
-    for (const auto& idx : poly) {
-      using I = std::decay_t<decltype(idx)>;
-      if constexpr (std::is_signed<I>::value) {
-        if (idx < 0) ok = false;
-      }
-      if (ok && static_cast<std::size_t>(idx) >= nv) ok = false;
-      ++k;
-    }
-    if (!ok || k < 3) continue;
+    if (!is_kept_soup_polygon(poly, nv)) continue;
     for (const auto& idx : poly) m.corners.push_back(static_cast<std::size_t>(idx));
     m.face_off.push_back(m.corners.size());
   }

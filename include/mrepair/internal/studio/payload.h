@@ -7,6 +7,7 @@
 // preview as JSON, the template lookup, and the placeholder replacement.
 
 #include <mrepair/internal/studio/overlay.h>
+#include <mrepair/report.h>
 
 #include <cmath>
 #include <cstdint>
@@ -62,29 +63,7 @@ std::string base64_le32(const std::vector<T>& values)
 
 // a JSON string literal; '<' is written \u003c so that the JSON can sit in a
 // <script> element
-inline std::string json_string(const std::string& s)
-{
-  std::string out = "\"";
-  for (char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      case '<': out += "\\u003c"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
+inline std::string json_string(const std::string& s) { return "\"" + json_escape(s, true) + "\""; }
 
 inline std::string json_number(double x)
 {
