@@ -35,8 +35,24 @@ from ._mrepair import (  # noqa: F401
 )
 from ._html_report import html_report  # noqa: F401
 
+#: the kinds of ``locate_defects`` / ``defect_overlay``, in drawing order, and
+#: the key of the inspection report's ``defects`` section each one counts
+#: (doc/studio.md)
+DEFECT_REPORT_KEYS = {
+    "boundary_loops": "boundary_loops",
+    "small_holes": "small_holes",
+    "non_manifold_edges": "non_manifold_edges",
+    "non_manifold_vertices": "non_manifold_vertices",
+    "spikes": "spiked_vertices",
+    "near_degenerate_faces": "near_degenerate_faces",
+    "small_components": "small_components",
+    "crossing_pairs": "self_intersecting_pairs",
+    "t_junctions": "t_junctions",
+}
+
 __all__ = [
     "Cancelled",
+    "DEFECT_REPORT_KEYS",
     "GapClosingSequence",
     "clean",
     "close_gaps",

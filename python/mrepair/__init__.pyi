@@ -20,6 +20,8 @@ Progress = Optional[Callable[[str, float], Optional[bool]]]
 Result = Tuple[npt.NDArray[np.float64], FacesOut, Report]
 
 __version__: str
+DEFECT_REPORT_KEYS: Dict[str, str]
+"""kind of locate_defects / defect_overlay -> key of the report's "defects" section"""
 
 class Cancelled(KeyboardInterrupt):
     """raised when a progress callable returns False."""

@@ -20,17 +20,7 @@ needs_generate = pytest.mark.skipif(not GENERATE or not Path(GENERATE).exists(),
                                     reason="MREPAIR_GENERATE not set")
 
 # kind of locate_defects -> key of the report's "defects" section
-REPORT_KEY = {
-    "boundary_loops": "boundary_loops",
-    "small_holes": "small_holes",
-    "non_manifold_edges": "non_manifold_edges",
-    "non_manifold_vertices": "non_manifold_vertices",
-    "spikes": "spiked_vertices",
-    "near_degenerate_faces": "near_degenerate_faces",
-    "small_components": "small_components",
-    "crossing_pairs": "self_intersecting_pairs",
-    "t_junctions": "t_junctions",
-}
+REPORT_KEY = mrepair.DEFECT_REPORT_KEYS
 KINDS = list(REPORT_KEY)
 
 

@@ -22,17 +22,7 @@ import numpy as np
 import mrepair
 
 # the overlay kinds and the inspect report's keys they count (doc/studio.md)
-REPORT_KEYS = {
-    "boundary_loops": "boundary_loops",
-    "small_holes": "small_holes",
-    "non_manifold_edges": "non_manifold_edges",
-    "non_manifold_vertices": "non_manifold_vertices",
-    "spikes": "spiked_vertices",
-    "near_degenerate_faces": "near_degenerate_faces",
-    "small_components": "small_components",
-    "crossing_pairs": "self_intersecting_pairs",
-    "t_junctions": "t_junctions",
-}
+REPORT_KEYS = mrepair.DEFECT_REPORT_KEYS
 
 
 def counts(V, F):
