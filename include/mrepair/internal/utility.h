@@ -197,6 +197,8 @@ void parallel_for_index(std::size_t n, std::size_t grain, const F& f)
                       });
     return;
   }
+#else
+  (void)grain;  // one thread: no grains
 #endif
   for (std::size_t i = 0; i < n; ++i) f(i);
 }
