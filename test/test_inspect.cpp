@@ -269,6 +269,33 @@ TEST(Inspect_soup, degenerate_repeated_and_invalid_polygons)
   EXPECT_EQ(r.isolated_vertices, 3u);
 }
 
+// Bad input reaches locate_defects() as it reaches the inspection: invalid
+// polygons are skipped, non-finite points and empty soups give a status, and
+// the lists still follow the report's counts.
+TEST(Inspect_soup, locate_defects_on_bad_input)
+{
+  Soup s;
+  s.points = {Point(0, 0, 0), Point(1, 0, 0), Point(2, 0, 0),
+              Point(0, 0, 1), Point(1, 0, 1), Point(0, 1, 1)};
+  s.polygons = {{0, 1, 2}, {3, 4, 5}, {3, 3, 4}, {0, 1, 2, 1}, {3, 4, 99}, {3, 4}};
+  expect_located_on_soup(s, "invalid polygons");
+  EXPECT_EQ(mrepair::locate_defects(s.points, s.polygons).report.status, Status::invalid_index);
+
+  std::vector<std::vector<int>> signed_polys = {{0, 1, -1}, {3, 4, 5}};
+  const mrepair::Defect_locations d = mrepair::locate_defects(s.points, signed_polys);
+  EXPECT_EQ(d.report.invalid_polygons, 1u);
+  EXPECT_EQ(d.boundary_loops.size(), d.report.boundary_loops);
+
+  Soup nan = grid(4, 4);
+  nan.points[7] = Point(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  expect_located_on_soup(nan, "non-finite point");
+  EXPECT_EQ(mrepair::locate_defects(nan.points, nan.polygons).report.status, Status::non_finite_input);
+
+  Soup empty;
+  expect_located_on_soup(empty, "empty soup");
+  EXPECT_TRUE(mrepair::locate_defects(empty.points, empty.polygons).boundary_loops.empty());
+}
+
 TEST(Inspect_soup, duplicate_points_and_empty_input)
 {
   Soup s = grid(2, 1);

@@ -178,17 +178,25 @@ public:
     const std::size_t n = pts_.size() / 3 + segs_.size() / 6 + tris_.size() / 9;
     bool ok = !k_.truncated && elements_ + n <= max_elements_;
     if (k_.drawn == 0 && !k_.truncated) {
-      // the first instance: its centre and size, for "fly to"
+      // the first instance: its centre and size, for "fly to", from its
+      // finite corners (a component or face may touch a NaN point)
+      auto finite_at = [](const std::vector<float>& a, std::size_t i) {
+        return std::isfinite(a[i]) && std::isfinite(a[i + 1]) && std::isfinite(a[i + 2]);
+      };
       double c[3] = {0, 0, 0};
       std::size_t np = 0;
       for (const std::vector<float>* a : {&pts_, &segs_, &tris_})
-        for (std::size_t i = 0; i + 2 < a->size(); i += 3, ++np)
-          for (int j = 0; j < 3; ++j) c[j] += (*a)[i + j];
+        for (std::size_t i = 0; i + 2 < a->size(); i += 3)
+          if (finite_at(*a, i)) {
+            ++np;
+            for (int j = 0; j < 3; ++j) c[j] += (*a)[i + j];
+          }
       if (np > 0) {
         for (double& x : c) x /= double(np);
         double r2 = 0;
         for (const std::vector<float>* a : {&pts_, &segs_, &tris_})
           for (std::size_t i = 0; i + 2 < a->size(); i += 3) {
+            if (!finite_at(*a, i)) continue;
             double d2 = 0;
             for (int j = 0; j < 3; ++j) d2 += ((*a)[i + j] - c[j]) * ((*a)[i + j] - c[j]);
             r2 = std::max(r2, d2);
