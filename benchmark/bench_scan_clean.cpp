@@ -36,7 +36,7 @@ using K = CGAL::Epick;
 using Point = K::Point_3;
 using Mesh = CGAL::Surface_mesh<Point>;
 namespace PMP = CGAL::Polygon_mesh_processing;
-namespace SC = mrepair::internal::scan_clean;
+namespace SC = mrepair::internal::clean_pipeline;
 
 Mesh load(const std::string& path)
 {
