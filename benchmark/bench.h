@@ -9,8 +9,14 @@
 #include <mrepair/report.h>
 #include <mrepair/status.h>
 
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
+#include <cstdlib>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -63,6 +69,10 @@ struct Task
   std::string name;     // e.g. "inspect"
   std::string summary;  // one line
   std::vector<Variant> variants;  // first = mrepair, the rest = counterparts
+  /// the generated input the task runs on when none is given (a kind of
+  /// bench_main.cpp's input table: "scan", "scan-mesh", "scan-clean",
+  /// "cad-soup", "cad-mesh")
+  std::string default_input = "scan-mesh";
 };
 
 inline std::vector<Task>& tasks()
@@ -78,6 +88,53 @@ inline std::string& reference_path()
 {
   static std::string path;
   return path;
+}
+
+/// A program of the build tree: $`env` when set, else <build>/tools/`name`
+/// (the harness is <build>/benchmark/mrepair-bench).
+inline std::string build_tool(const char* env, const char* name)
+{
+  if (const char* e = std::getenv(env)) return e;
+  char buf[4096];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
+  if (n <= 0) return name;
+  const std::string self(buf, static_cast<std::size_t>(n));
+  const std::string dir = self.substr(0, self.find_last_of('/'));
+  return dir.substr(0, dir.find_last_of('/')) + "/tools/" + name;
+}
+
+/// Runs `args` as a child process with its output sent to /dev/null; wall
+/// seconds, exit code (-1: did not start or was killed) and the child's peak
+/// resident set (wait4) come back.
+struct Child_run
+{
+  double seconds = 0;
+  int exit_code = -1;
+  double peak_mb = 0;
+};
+
+inline Child_run run_program(const std::vector<std::string>& args)
+{
+  Child_run c;
+  std::vector<char*> argv;
+  for (const std::string& s : args) argv.push_back(const_cast<char*>(s.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  const auto t0 = std::chrono::steady_clock::now();
+  pid_t pid = 0;
+  const int err = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (err != 0) return c;
+  int status = 0;
+  rusage ru{};
+  wait4(pid, &status, 0, &ru);
+  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  c.peak_mb = double(ru.ru_maxrss) / 1024.0;
+  return c;
 }
 
 /// registers a task at static-initialisation time.

@@ -44,6 +44,7 @@
 #include <vector>
 
 namespace {
+namespace clean_task {  // a namespace of its own: the harness is a unity build
 
 using K = CGAL::Epick;
 using Point = K::Point_3;
@@ -227,4 +228,5 @@ mrepair::bench::Task_registrar reg{
       {"CGAL chain", [](const std::string& p) { return run_cgal(p, false); }},
       {"CGAL chain + experimental", [](const std::string& p) { return run_cgal(p, true); }}}}};
 
+} // namespace clean_task
 }  // namespace

@@ -48,6 +48,7 @@
 #include <unistd.h>
 
 namespace {
+namespace close_gaps_task {  // a namespace of its own: the harness is a unity build
 
 using K = CGAL::Epick;
 using Point = K::Point_3;
@@ -259,6 +260,8 @@ mrepair::bench::Task_registrar reg{
      "PMP::stitch_borders vs PMP::experimental::snap_borders + stitch_borders",
      {{"mrepair::close_gaps", run_mrepair},
       {"CGAL stitch_borders", run_stitch},
-      {"CGAL snap_borders+stitch", run_snap}}}};
+      {"CGAL snap_borders+stitch", run_snap}},
+     "cad-mesh"}};
 
+} // namespace close_gaps_task
 } // namespace

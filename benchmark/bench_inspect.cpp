@@ -37,6 +37,7 @@
 #include <vector>
 
 namespace {
+namespace inspect_task {  // a namespace of its own: the harness is a unity build
 
 using K = CGAL::Epick;
 using Point = K::Point_3;
@@ -242,4 +243,5 @@ mrepair::bench::Task_registrar reg{{"inspect",
                                     "defect counts and quality figures of a mesh",
                                     {{"mrepair::inspect", run_mrepair}, {"CGAL PMP", run_cgal}}}};
 
+} // namespace inspect_task
 } // namespace

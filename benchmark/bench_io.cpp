@@ -48,6 +48,7 @@
 #include <vector>
 
 namespace {
+namespace io_task {  // a namespace of its own: the harness is a unity build
 
 using K = CGAL::Epick;
 using Point = K::Point_3;
@@ -324,4 +325,5 @@ mrepair::bench::Task_registrar reg_write{
       {"CGAL::IO::write_polygon_soup", write_cgal},
       {"CGAL::IO::write_<format>", write_cgal_format}}}};
 
+} // namespace io_task
 } // namespace

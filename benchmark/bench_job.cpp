@@ -15,6 +15,13 @@
 //             repair_polygon_soup, orient_polygon_soup,
 //             polygon_soup_to_polygon_mesh, stitch_borders,
 //             duplicate_non_manifold_vertices, write_polygon_mesh.
+//   job-remesh: `mrepair remesh INPUT OUT.ply --binary --edge-length L
+//             --iterations 3` (uniform, sharp edges over 44 degrees kept,
+//             threads) vs read_polygon_mesh, detect_sharp_edges (44 degrees),
+//             isotropic_remeshing (L, 3 iterations, sharp edges constrained),
+//             write_polygon_mesh (binary PLY). L is the input's mean edge
+//             length, computed untimed and given to both (MREPAIR_REMESH_FACTOR
+//             scales it, MREPAIR_REMESH_ITERATIONS sets the iterations).
 //   job-gaps: `mrepair close-gaps INPUT OUT.off --tolerance auto` vs
 //             read_polygon_mesh, experimental::snap_borders (parallel if
 //             available) + stitch_borders, write_polygon_mesh. The CGAL side
@@ -42,6 +49,8 @@
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/internal/Snapping/snap.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/detect_features.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/repair.h>
@@ -53,11 +62,7 @@
 #include <CGAL/Real_timer.h>
 #include <CGAL/Surface_mesh.h>
 
-#include <fcntl.h>
 #include <sys/resource.h>
-#include <sys/wait.h>
-#include <spawn.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -66,12 +71,12 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
-extern char** environ;
-
 namespace {
+namespace job_task {  // a namespace of its own: the harness is a unity build
 
 using K = CGAL::Epick;
 using Point = K::Point_3;
@@ -98,51 +103,7 @@ struct Scratch
   std::string file(const std::string& name) const { return dir + "/" + name; }
 };
 
-std::string mrepair_program()
-{
-  if (const char* env = std::getenv("MREPAIR_CLI")) return env;
-  char buf[4096];
-  const ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
-  if (n <= 0) return "mrepair";
-  std::string self(buf, static_cast<std::size_t>(n));
-  const std::string dir = self.substr(0, self.find_last_of('/'));  // <build>/benchmark
-  return dir.substr(0, dir.find_last_of('/')) + "/tools/mrepair";
-}
-
-// Runs `argv` as a child process; wall seconds, exit status and the child's
-// peak resident set (wait4) come back.
-struct Child_run
-{
-  double seconds = 0;
-  int exit_code = -1;
-  double peak_mb = 0;
-};
-
-Child_run run_child(const std::vector<std::string>& args)
-{
-  Child_run c;
-  std::vector<char*> argv;
-  for (const std::string& s : args) argv.push_back(const_cast<char*>(s.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  CGAL::Real_timer t;
-  t.start();
-  pid_t pid = 0;
-  const int err = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (err != 0) return c;
-  int status = 0;
-  rusage ru{};
-  wait4(pid, &status, 0, &ru);
-  t.stop();
-  c.seconds = t.time();
-  c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  c.peak_mb = ru.ru_maxrss / 1024.0;
-  return c;
-}
+std::string mrepair_program() { return mrepair::bench::build_tool("MREPAIR_CLI", "mrepair"); }
 
 // Every number of a JSON document whose key ends in "seconds", with its
 // dotted path ("clean.steps.relax_spikes.seconds"): the phase breakdown the
@@ -252,7 +213,7 @@ mrepair::bench::Measurement run_mrepair(const std::string& input, const char* co
   std::vector<std::string> args = {mrepair_program(), command, input, output, "--report", report, "--quiet"};
   if (binary) args.push_back("--binary");
   args.insert(args.end(), extra.begin(), extra.end());
-  const Child_run c = run_child(args);
+  const mrepair::bench::Child_run c = mrepair::bench::run_program(args);
   out.seconds = c.seconds;
   out.result.add("program", args[0]);
   out.result.add("exit_code", c.exit_code);
@@ -432,13 +393,96 @@ mrepair::bench::Measurement run_cgal_gaps(const std::string& input)
   return out;
 }
 
+// job-remesh: the target length both sides get and the iterations
+struct Remesh_job_settings
+{
+  double length = 0;
+  int iterations = 3;
+  double feature_angle = 44;
+};
+
+Remesh_job_settings remesh_job_settings(const std::string& input)
+{
+  Remesh_job_settings s;
+  Mesh m;
+  if (!CGAL::IO::read_polygon_mesh(input, m) || m.number_of_edges() == 0) return s;
+  double sum = 0;
+  for (auto e : edges(m)) sum += std::sqrt(CGAL::squared_distance(m.point(source(e, m)), m.point(target(e, m))));
+  const char* factor = std::getenv("MREPAIR_REMESH_FACTOR");
+  s.length = (factor ? std::atof(factor) : 1.0) * sum / double(m.number_of_edges());
+  if (const char* it = std::getenv("MREPAIR_REMESH_ITERATIONS")) s.iterations = std::atoi(it);
+  return s;
+}
+
+std::string exact_decimal(double v)
+{
+  std::ostringstream out;
+  out.precision(17);
+  out << v;
+  return out.str();
+}
+
+mrepair::bench::Measurement run_mrepair_remesh(const std::string& input)
+{
+  const Remesh_job_settings s = remesh_job_settings(input);  // untimed
+  if (s.length <= 0) throw std::runtime_error("cannot read " + input + " as a polygon mesh");
+  mrepair::bench::Measurement out = run_mrepair(
+      input, "remesh", "out.ply", true,
+      {"--edge-length", exact_decimal(s.length), "--iterations", std::to_string(s.iterations),
+       "--feature-angle", exact_decimal(s.feature_angle)});
+  out.result.add("target_length", s.length);
+  return out;
+}
+
+mrepair::bench::Measurement run_cgal_remesh(const std::string& input)
+{
+  const Remesh_job_settings s = remesh_job_settings(input);  // untimed
+  if (s.length <= 0) throw std::runtime_error("cannot read " + input + " as a polygon mesh");
+  mrepair::bench::Measurement out;
+  Scratch dir;
+  const std::string output = dir.file("out.ply");
+  Phases phase{out.result};
+  CGAL::Real_timer total;
+  total.start();
+  Mesh m;
+  if (!phase("read_polygon_mesh", [&] { return CGAL::IO::read_polygon_mesh(input, m); })) {
+    out.status = "read failed";
+    return out;
+  }
+  auto sharp = m.add_property_map<Mesh::Edge_index, bool>("e:sharp", false).first;
+  phase("detect_sharp_edges", [&] {
+    PMP::detect_sharp_edges(m, s.feature_angle, sharp);
+    return 0;
+  });
+  phase("isotropic_remeshing", [&] {
+    PMP::isotropic_remeshing(faces(m), s.length, m,
+                             CGAL::parameters::number_of_iterations(s.iterations).edge_is_constrained_map(sharp));
+    return 0;
+  });
+  m.collect_garbage();
+  const bool written = phase("write_polygon_mesh", [&] {
+    return CGAL::IO::write_polygon_mesh(output, m, CGAL::parameters::use_binary_mode(true));
+  });
+  total.stop();
+  out.seconds = total.time();
+  if (!written) out.status = "write failed";
+  out.result.add("target_length", s.length);
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  out.result.add("process_peak_mb", ru.ru_maxrss / 1024.0);
+  m.clear();
+  inspect_file(output, out.after, false);
+  return out;
+}
+
 mrepair::bench::Task_registrar job{
     {"job",
      "whole command with file I/O: `mrepair repair` vs the CGAL soup + cleaning chain with its "
      "experimental stages (run `mrepair` from $MREPAIR_CLI or <build>/tools)",
      {{"mrepair repair (process)",
        [](const std::string& p) { return run_mrepair(p, "repair", "out.ply", true); }},
-      {"CGAL chain + experimental (process)", [](const std::string& p) { return run_cgal(p, true); }}}}};
+      {"CGAL chain + experimental (process)", [](const std::string& p) { return run_cgal(p, true); }}},
+     "scan"}};
 
 mrepair::bench::Task_registrar job_soup{
     {"job-soup",
@@ -446,7 +490,15 @@ mrepair::bench::Task_registrar job_soup{
      "stitch, split non-manifold vertices)",
      {{"mrepair soup (process)",
        [](const std::string& p) { return run_mrepair(p, "soup", "out.off", false); }},
-      {"CGAL chain (process)", [](const std::string& p) { return run_cgal(p, false); }}}}};
+      {"CGAL chain (process)", [](const std::string& p) { return run_cgal(p, false); }}},
+     "cad-soup"}};
+
+mrepair::bench::Task_registrar job_remesh{
+    {"job-remesh",
+     "whole command with file I/O: `mrepair remesh --edge-length L` vs CGAL read_polygon_mesh, "
+     "detect_sharp_edges, isotropic_remeshing, write_polygon_mesh (L: the input's mean edge length)",
+     {{"mrepair remesh (process)", run_mrepair_remesh}, {"CGAL isotropic_remeshing (process)", run_cgal_remesh}},
+     "scan-clean"}};
 
 mrepair::bench::Task_registrar job_gaps{
     {"job-gaps",
@@ -454,6 +506,8 @@ mrepair::bench::Task_registrar job_gaps{
      "snap_borders + stitch_borders (at mrepair's estimated tolerance, or MREPAIR_GAP_TOLERANCE x "
      "diagonal for both), write_polygon_mesh",
      {{"mrepair close-gaps (process)", run_mrepair_gaps},
-      {"CGAL snap+stitch (process)", run_cgal_gaps}}}};
+      {"CGAL snap+stitch (process)", run_cgal_gaps}},
+     "cad-soup"}};
 
+} // namespace job_task
 }  // namespace

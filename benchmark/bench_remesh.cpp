@@ -45,6 +45,7 @@
 #include <string>
 
 namespace {
+namespace remesh_task {  // a namespace of its own: the harness is a unity build
 
 using K = CGAL::Epick;
 using Point = K::Point_3;
@@ -287,7 +288,8 @@ mrepair::bench::Task_registrar reg{
      "uniform isotropic remeshing vs CGAL PMP::isotropic_remeshing (env MREPAIR_REMESH_*)",
      {{"mrepair::isotropic_remesh", run_mrepair<CGAL::Sequential_tag>},
       {"mrepair::isotropic_remesh<Parallel>", run_mrepair<CGAL::Parallel_if_available_tag>},
-      {"CGAL PMP::isotropic_remeshing", run_cgal}}}};
+      {"CGAL PMP::isotropic_remeshing", run_cgal}},
+     "scan-clean"}};
 
 mrepair::bench::Task_registrar reg_adaptive{
     {"remesh_adaptive",
@@ -301,6 +303,8 @@ mrepair::bench::Task_registrar reg_adaptive{
 #if CGAL_VERSION_NR >= 1060000000
       {"CGAL Adaptive_sizing_field", run_cgal_adaptive},
 #endif
-     }}};
+     },
+     "scan-clean"}};
 
+} // namespace remesh_task
 } // namespace

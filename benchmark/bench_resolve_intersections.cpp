@@ -50,6 +50,7 @@
 #include <string>
 
 namespace {
+namespace resolve_intersections_task {  // a namespace of its own: the harness is a unity build
 
 using K = CGAL::Epick;
 using Point = K::Point_3;
@@ -181,6 +182,8 @@ mrepair::bench::Task_registrar reg{
 #if CGAL_VERSION_NR >= 1060000000
       {"CGAL autorefine_soup", run_cgal_autorefine},
 #endif
-     }}};
+     },
+     "scan-clean"}};
 
+} // namespace resolve_intersections_task
 } // namespace

@@ -31,6 +31,7 @@
 #include <string>
 
 namespace {
+namespace scan_clean_task {  // a namespace of its own: the harness is a unity build
 
 using K = CGAL::Epick;
 using Point = K::Point_3;
@@ -172,4 +173,5 @@ mrepair::bench::Task_registrar reg{
       {"CGAL degenerate+smoothing", run_cgal},
       {"CGAL degenerate only", run_cgal_degenerate_only}}}};
 
+} // namespace scan_clean_task
 } // namespace

@@ -33,6 +33,7 @@
 #include <vector>
 
 namespace {
+namespace soup_task {  // a namespace of its own: the harness is a unity build
 
 using K = CGAL::Epick;
 using Point = K::Point_3;
@@ -164,6 +165,8 @@ mrepair::bench::Task_registrar reg{
      "polygon soup to oriented manifold mesh: polygon_soup_to_manifold_mesh vs the CGAL 5.5 chain",
      {{"mrepair::polygon_soup_to_manifold_mesh", [](const std::string& p) { return run_mrepair(p, false); }},
       {"CGAL chain", [](const std::string& p) { return run_cgal(p); }},
-      {"mrepair (snap 1e-4 diag)", [](const std::string& p) { return run_mrepair(p, true); }}}}};
+      {"mrepair (snap 1e-4 diag)", [](const std::string& p) { return run_mrepair(p, true); }}},
+     "cad-soup"}};
 
+} // namespace soup_task
 } // namespace

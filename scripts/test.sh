@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
 # The README's test command; .ci/run calls it. Two passes, one per supported
 # CGAL release:
-#  1. CGAL 5.5 (Debian 12's libcgal-dev): builds the library checks, tools,
-#     examples, tests and the Python package in Release and runs the whole
-#     suite (pytest included).
+#  1. CGAL 5.5 (Debian 12's libcgal-dev): builds every target of the README's
+#     default build (`cmake --preset release`: library checks, tools,
+#     examples, tests, the benchmark harness, the studio's assets) and the
+#     Python package in Release, and runs the whole suite (pytest included;
+#     the harness runs every task once on a small generated input).
 #  2. CGAL 6.0.1 (Debian 13's libcgal-dev, unpacked into build/cgal-trixie by
 #     scripts/fetch_cgal.sh, nothing installed): builds the tests again with
 #     AddressSanitizer and UndefinedBehaviorSanitizer and warnings as errors in
 #     mrepair's code, and runs them (scripts/test_cgal6.sh; the tests that run
-#     the programs use those of pass 1).
+#     the programs use those of pass 1); the benchmark harness is compiled and
+#     linked there too, so an API difference in it shows on both releases.
 # The sanitizers run in the CGAL 6 pass rather than in a third one: CI has 60
 # minutes and each pass takes about 20 of them on 2 cores; mrepair's memory and
 # undefined-behaviour errors do not depend on the CGAL release, and the tests
@@ -16,17 +19,24 @@
 # API difference. `cmake --preset asan` still builds the sanitized tests on 5.5.
 #
 # MREPAIR_SKIP_CGAL6=1 (or the older MREPAIR_SKIP_ASAN=1) runs pass 1 only.
-# The benchmark harness (ten heavy translation units) is left out unless
-# MREPAIR_BUILD_BENCHMARKS=ON; `cmake --preset release` alone builds it.
+# MREPAIR_BUILD_BENCHMARKS=OFF leaves the harness out of both passes (for a
+# quicker local run; CI builds it). Each step prints its seconds.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 # The Python package and its pytest suite (one CTest test) join the release
 # pass only, built for Debian's interpreter (not one a version manager put first on PATH).
-cmake --preset release -DMREPAIR_BUILD_BENCHMARKS="${MREPAIR_BUILD_BENCHMARKS:-OFF}" \
+started=$SECONDS
+step() { echo "== test.sh: $1 ($((SECONDS - started)) s so far)"; }
+step "configure (CGAL 5.5)"
+cmake --preset release -DMREPAIR_BUILD_BENCHMARKS="${MREPAIR_BUILD_BENCHMARKS:-ON}" \
   -DMREPAIR_BUILD_PYTHON=ON -DPython3_EXECUTABLE=/usr/bin/python3
+step "build (CGAL 5.5)"
 cmake --build --preset release
+step "ctest (CGAL 5.5)"
 ctest --preset release
 if [ "${MREPAIR_SKIP_CGAL6:-${MREPAIR_SKIP_ASAN:-0}}" != 1 ]; then
+  step "CGAL 6 pass"
   bash scripts/test_cgal6.sh
 fi
+step "done"

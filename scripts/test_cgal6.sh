@@ -3,8 +3,9 @@
 # build/cgal-trixie (scripts/fetch_cgal.sh: nothing is installed, the system's
 # CGAL 5.5 stays the default), then builds the test suite against it with
 # AddressSanitizer and UndefinedBehaviorSanitizer and warnings as errors in
-# mrepair's own code (preset `cgal6`), and runs it. The tests that run the
-# programs use those of build/release when it exists and skip otherwise.
+# mrepair's own code (preset `cgal6`), and runs it; the benchmark harness is
+# compiled and linked in the same build. The tests that run the programs use
+# those of build/release when it exists and skip otherwise.
 #
 #   bash scripts/test_cgal6.sh          # what CI runs (scripts/test.sh calls it)
 #   bash scripts/test_cgal6.sh --all    # everything in Release against CGAL 6:
@@ -20,7 +21,8 @@ if [ "${1:-}" = "--all" ]; then
   cmake --build build/cgal6-release -j 2
   ctest --test-dir build/cgal6-release -j 2 --output-on-failure --timeout 900
 else
-  cmake --preset cgal6 -DCGAL_DIR="$cgal_dir"
+  # the harness only compiles and links here (it runs in the release pass)
+  cmake --preset cgal6 -DCGAL_DIR="$cgal_dir" -DMREPAIR_BUILD_BENCHMARKS="${MREPAIR_BUILD_BENCHMARKS:-ON}"
   cmake --build --preset cgal6
   ctest --preset cgal6
 fi
