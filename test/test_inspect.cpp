@@ -1,6 +1,7 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
 // Inspection: hand-built soups and meshes with hand-counted defects, on the
 // soup path and on both mesh types; a CGAL cross-check on a real mesh.
+#include <mrepair/compare_to_reference.h>
 #include <mrepair/inspect.h>
 #include <mrepair/internal/studio/overlay.h>
 #include <mrepair/locate_defects.h>
@@ -25,6 +26,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <random>
 #include <set>
 #include <string>
@@ -1247,4 +1249,195 @@ TEST(Spatial_grid, box_query_finds_the_boxes_sharing_a_cell)
       }
     }
   }
+}
+
+// ---------------------------------------------------------------------------
+// compare_to_reference (issue 50, item 4): which input vertices an output still
+// holds, on hand-made cases, typed over Surface_mesh and Polyhedron_3.
+
+template <class C>
+class Compare_to_reference : public ::testing::Test
+{};
+TYPED_TEST_SUITE(Compare_to_reference, Mesh_configs);
+
+TYPED_TEST(Compare_to_reference, identical_output_keeps_every_vertex)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup s = icosphere(2);
+  const Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Reference_comparison r = mrepair::compare_to_reference(s.points, m);
+  EXPECT_EQ(r.status, Status::ok);
+  EXPECT_EQ(r.vertices, s.points.size());
+  EXPECT_EQ(r.vertices_lost, 0u);
+  EXPECT_LE(r.max_distance, 1e-12);
+  EXPECT_TRUE(r.inside_tested);
+  EXPECT_NEAR(r.diagonal, 2 * std::sqrt(3.), 1e-9);
+  EXPECT_NEAR(r.tolerance, 1e-6 * r.diagonal, 1e-15);
+}
+
+TYPED_TEST(Compare_to_reference, a_removed_part_is_lost_and_a_part_inside_is_not)
+{
+  using Mesh = typename TypeParam::Mesh;
+  // output: a 4-unit cube; reference: that cube, a small cube inside it, a
+  // small cube outside it
+  const Soup big = cube(4.0);
+  const Soup inner = translated(cube(1.0), 1.5, 1.5, 1.5);
+  const Soup outer = translated(cube(1.0), 10, 0, 0);
+  const Soup reference = merged(merged(big, inner), outer);
+  const Mesh m = to_mesh<Mesh>(big);
+  const mrepair::Reference_comparison r = mrepair::compare_to_reference(reference.points, m);
+  EXPECT_EQ(r.status, Status::ok);
+  EXPECT_EQ(r.vertices, 24u);
+  EXPECT_EQ(r.vertices_inside, 8u);  // the inner cube: absorbed, not lost
+  EXPECT_EQ(r.vertices_lost, 8u);    // the outer cube: deleted
+  ASSERT_EQ(r.lost.size(), 8u);
+  for (std::size_t k = 0; k < 8; ++k) EXPECT_EQ(r.lost[k], 16 + k);
+  // farthest: the outer cube's far corners, (11, 1, 1) and (11, 0, 0) from the face x = 4
+  EXPECT_NEAR(r.max_distance, 7., 1e-9);
+  EXPECT_NEAR(r.max_distance_relative, 7. / r.diagonal, 1e-12);
+  // the soup overload reads the same output
+  const mrepair::Reference_comparison q =
+      mrepair::compare_to_reference(reference.points, big.points, big.polygons);
+  EXPECT_EQ(q.vertices_lost, 8u);
+  EXPECT_EQ(q.vertices_inside, 8u);
+}
+
+TYPED_TEST(Compare_to_reference, an_open_output_encloses_nothing)
+{
+  using Mesh = typename TypeParam::Mesh;
+  // the cube without its top: the points inside are lost, the vertices on it kept
+  const Soup open = cube(4.0);
+  Soup top_removed;
+  top_removed.points = open.points;
+  for (const Polygon& p : open.polygons) {
+    bool top = true;
+    for (std::size_t i : p) top = top && open.points[i].z() == 4.0;
+    if (!top) top_removed.polygons.push_back(p);
+  }
+  ASSERT_EQ(top_removed.polygons.size(), 10u);
+  const Soup inner = translated(cube(1.0), 1.5, 1.5, 1.5);
+  const Soup reference = merged(top_removed, inner);
+  const Mesh m = to_mesh<Mesh>(top_removed);
+  const mrepair::Reference_comparison r = mrepair::compare_to_reference(reference.points, m);
+  EXPECT_EQ(r.status, Status::ok);
+  EXPECT_FALSE(r.inside_tested);
+  EXPECT_EQ(r.vertices_inside, 0u);
+  EXPECT_EQ(r.vertices_lost, 8u);
+  // a closed part beside the open one is tested for inside, the open one not
+  const Soup with_closed = merged(top_removed, translated(cube(1.0), 10, 0, 0));
+  const Soup reference2 = merged(reference, translated(cube(0.25), 10.25, 0.25, 0.25));
+  const Mesh m2 = to_mesh<Mesh>(with_closed);
+  const mrepair::Reference_comparison r2 = mrepair::compare_to_reference(reference2.points, m2);
+  EXPECT_TRUE(r2.inside_tested);
+  EXPECT_EQ(r2.vertices_inside, 8u);  // inside the closed unit cube at x = 10
+  EXPECT_EQ(r2.vertices_lost, 8u);    // inside the open box: lost
+}
+
+TYPED_TEST(Compare_to_reference, overlapping_shells_count_as_their_union_and_cavities_as_empty)
+{
+  using Mesh = typename TypeParam::Mesh;
+  // two cubes that overlap (crossings left, as a repair may leave them): a
+  // point in both is inside (a parity test would call it outside)
+  const Soup two = merged(cube(2.0), translated(cube(2.0), 1, 1, 1));
+  const std::vector<Point> in_both = {Point(1.5, 1.5, 1.5), Point(1.2, 1.7, 1.9)};
+  const std::vector<Point> in_one = {Point(0.5, 0.5, 0.5), Point(2.5, 2.5, 2.5)};
+  const std::vector<Point> outside = {Point(2.5, 0.5, 0.5), Point(-1, 1, 1)};
+  const Mesh m = to_mesh<Mesh>(two);
+  for (const auto& set : {in_both, in_one}) {
+    const mrepair::Reference_comparison r = mrepair::compare_to_reference(set, m);
+    EXPECT_EQ(r.vertices_lost, 0u);
+    EXPECT_EQ(r.vertices_inside, 2u);
+  }
+  EXPECT_EQ(mrepair::compare_to_reference(outside, m).vertices_lost, 2u);
+  // a cavity: the inner cube turned inward; a point in it is outside the solid
+  Soup inner = translated(cube(1.0), 1.5, 1.5, 1.5);
+  for (Polygon& p : inner.polygons) std::reverse(p.begin(), p.end());
+  const Mesh hollow = to_mesh<Mesh>(merged(cube(4.0), inner));
+  const std::vector<Point> probes = {Point(2, 2, 2), Point(0.5, 3, 1)};  // in the cavity, in the wall
+  const mrepair::Reference_comparison r = mrepair::compare_to_reference(probes, hollow);
+  EXPECT_EQ(r.lost, std::vector<std::size_t>{0});
+  EXPECT_EQ(r.vertices_inside, 1u);
+  // on axis-aligned faces, through edges and corners: the rays avoid them
+  std::vector<Point> grid_points;
+  for (int i = 0; i <= 8; ++i)
+    for (int j = 0; j <= 8; ++j) grid_points.emplace_back(0.5 * i, 0.5 * j, 0.5);
+  const Mesh box = to_mesh<Mesh>(translated(cube(4.0), 0, 0, 0));
+  const mrepair::Reference_comparison g = mrepair::compare_to_reference(grid_points, box);
+  EXPECT_EQ(g.vertices_lost, 0u);  // on the walls (distance 0) or inside
+}
+
+TYPED_TEST(Compare_to_reference, tolerance_is_respected)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup g = grid(4, 4);  // a sheet: only the distance counts
+  const Mesh m = to_mesh<Mesh>(g);
+  // one vertex lifted by 0.01, one by 0.1, one pushed below by 0.05
+  std::vector<Point> reference = g.points;
+  reference[6] = Point(reference[6].x(), reference[6].y(), 0.01);
+  reference[12] = Point(reference[12].x(), reference[12].y(), 0.1);
+  reference[18] = Point(reference[18].x(), reference[18].y(), -0.05);
+  const double diagonal = std::sqrt(32. + 0.15 * 0.15);
+  // default: 1e-6 x diagonal, all three lost
+  mrepair::Reference_comparison r = mrepair::compare_to_reference(reference, m);
+  EXPECT_NEAR(r.diagonal, diagonal, 1e-12);
+  EXPECT_EQ(r.vertices_lost, 3u);
+  EXPECT_NEAR(r.max_distance, 0.1, 1e-12);
+  // 0.06 keeps the first and the last
+  r = mrepair::compare_to_reference(reference, m, MP::reference_tolerance(0.06));
+  EXPECT_EQ(r.vertices_lost, 1u);
+  EXPECT_EQ(r.lost, std::vector<std::size_t>{12});
+  r = mrepair::compare_to_reference(reference, m, MP::reference_tolerance(std::optional<double>(0.2)));
+  EXPECT_EQ(r.vertices_lost, 0u);
+  // an empty optional is the default
+  r = mrepair::compare_to_reference(reference, m, MP::reference_tolerance(std::optional<double>()));
+  EXPECT_EQ(r.vertices_lost, 3u);
+  // the sequential run gives the same figures
+  const mrepair::Reference_comparison seq = mrepair::compare_to_reference<CGAL::Sequential_tag>(reference, m);
+  EXPECT_EQ(seq.lost, std::vector<std::size_t>({6, 12, 18}));
+  EXPECT_EQ(seq.max_distance, r.max_distance);
+}
+
+TYPED_TEST(Compare_to_reference, bad_input_gets_a_status)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup c = cube(1.0);
+  const Mesh m = to_mesh<Mesh>(c);
+  EXPECT_EQ(mrepair::compare_to_reference(std::vector<Point>(), m).status, Status::empty_input);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<Point> with_nan = c.points;
+  with_nan.emplace_back(nan, 0, 0);
+  mrepair::Reference_comparison r = mrepair::compare_to_reference(with_nan, m);
+  EXPECT_EQ(r.status, Status::ok);
+  EXPECT_EQ(r.vertices, 8u);
+  EXPECT_EQ(r.vertices_skipped, 1u);
+  EXPECT_EQ(r.vertices_lost, 0u);
+  EXPECT_EQ(mrepair::compare_to_reference(std::vector<Point>(1, Point(nan, nan, nan)), m).status,
+            Status::empty_input);
+  EXPECT_EQ(mrepair::compare_to_reference(c.points, m, MP::reference_tolerance(-1.)).status,
+            Status::invalid_parameter);
+  EXPECT_EQ(mrepair::compare_to_reference(c.points, m, MP::reference_tolerance(nan)).status,
+            Status::invalid_parameter);
+  // an output without faces loses everything
+  r = mrepair::compare_to_reference(c.points, Mesh());
+  EXPECT_EQ(r.status, Status::ok);
+  EXPECT_EQ(r.vertices_lost, 8u);
+  EXPECT_TRUE(std::isinf(r.max_distance));
+  // a quad mesh is not a triangle mesh; its soup is read as fans
+  const Soup quads = cube(1.0, true);
+  const Mesh q = to_mesh<Mesh>(quads);
+  EXPECT_EQ(mrepair::compare_to_reference(c.points, q).status, Status::invalid_mesh);
+  r = mrepair::compare_to_reference(c.points, quads.points, quads.polygons);
+  EXPECT_EQ(r.status, Status::ok);
+  EXPECT_EQ(r.vertices_lost, 0u);
+  EXPECT_TRUE(r.inside_tested);
+  // an out-of-range index
+  Soup broken = c;
+  broken.polygons[0][0] = 99;
+  EXPECT_EQ(mrepair::compare_to_reference(c.points, broken.points, broken.polygons).status,
+            Status::invalid_index);
+  // a non-finite output point
+  Soup nan_out = c;
+  nan_out.points[0] = Point(nan, 0, 0);
+  EXPECT_EQ(mrepair::compare_to_reference(c.points, nan_out.points, nan_out.polygons).status,
+            Status::non_finite_input);
 }

@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "cli_io.h"
 
+#include <mrepair/compare_to_reference.h>
 #include <mrepair/definitions.h>
 #include <mrepair/inspect.h>
 #include <mrepair/io.h>
@@ -36,11 +37,13 @@ const std::vector<cli::Option> options = {
     {"no-self-intersections", false, "skip the self-intersection test"},
     {"html", true, "also write an HTML report FILE: the mesh with its defects (doc/studio.md)"},
     {"html-faces", true, "face budget of the mesh in the HTML report; larger ones are decimated (500000)"},
+    {"reference", true, "also compare with FILE (the input of a repair): its vertices kept and lost, in \"reference\""},
+    {"reference-tolerance", true, "a reference vertex this close to the surface is on it (default 1e-6 x its bbox diagonal)"},
 };
 
 int run(int argc, char** argv);
 
-const cli::Command command{"inspect", "INPUT [--json] [--report FILE] [thresholds]",
+const cli::Command command{"inspect", "INPUT [--json] [--report FILE] [--reference FILE] [thresholds]",
                            "count the defects of a mesh or polygon soup", run};
 cli::Registrar reg{command};
 
@@ -126,6 +129,37 @@ int run(int argc, char** argv)
                                    ? "invalid polygons"
                                    : "not a manifold, consistently oriented polygon mesh");
   }
+  // --reference: how much of the repair's input this output still holds
+  mrepair::Status reference_status = mrepair::Status::ok;
+  if (args.has("reference")) {
+    const std::optional<double> reference_tolerance = args.optional_double("reference-tolerance");
+    if (reference_tolerance && *reference_tolerance < 0)
+      throw cli::Usage_error("--reference-tolerance expects a non-negative distance");
+    std::vector<Point> reference_points;
+    std::vector<std::vector<std::size_t>> reference_polygons;
+    printer.start_phase("read reference");
+    const mrepair::Io_result rio =
+        mrepair::read_polygon_soup(args.get("reference"), reference_points, reference_polygons);
+    printer.end_phase("read reference");
+    if (rio.status != mrepair::Status::ok && rio.status != mrepair::Status::non_finite_input &&
+        rio.status != mrepair::Status::invalid_index)
+      return cli::fail(rio.message.empty() ? args.get("reference") + ": " + mrepair::to_string(rio.status)
+                                           : rio.message);
+    // the vertices of the model: the points its polygons use (all of them for a point set)
+    std::vector<char> used(reference_points.size(), reference_polygons.empty() ? 1 : 0);
+    for (const auto& polygon : reference_polygons)
+      for (std::size_t i : polygon)
+        if (i < used.size()) used[i] = 1;
+    std::vector<Point> model_points;
+    for (std::size_t i = 0; i < reference_points.size(); ++i)
+      if (used[i]) model_points.push_back(reference_points[i]);
+    printer.start_phase("compare with reference");
+    const mrepair::Reference_comparison c = mrepair::compare_to_reference(
+        model_points, points, polygons, MP::reference_tolerance(reference_tolerance));
+    printer.end_phase("compare with reference");
+    c.to_report(report.section("reference"));
+    reference_status = c.status;
+  }
   if (!cli::emit_report(args, report)) return 1;
   if (args.has("html")) {
     const cli::Studio_view view = cli::studio_view(mrepair::internal::indexed_faces_of_soup(points, polygons), located,
@@ -146,7 +180,10 @@ int run(int argc, char** argv)
         cli::write_studio_report(html_template, args.get("html"), title, view, cli::Studio_view(), report, settings);
     if (!error.empty()) return cli::fail(error);
   }
-  return soup.status == mrepair::Status::invalid_parameter ? 1 : 0;
+  return soup.status == mrepair::Status::invalid_parameter ||
+                 reference_status == mrepair::Status::invalid_parameter
+             ? 1
+             : 0;
 }
 
 } // namespace

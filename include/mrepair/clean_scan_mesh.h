@@ -22,9 +22,10 @@ namespace mrepair {
 /// \code
 /// profile <- input_profile, or classify_input(pmesh) when automatic
 /// steps <- clean_steps if given, else all for a scan and, for a CAD or
-///          print model, only: degenerate vertices, open debris next to a
-///          closed largest component (remove_small_components with
-///          open_debris_only), hole filling (Liepa's
+///          print model, only: degenerate vertices, open debris of fewer
+///          than 4 faces that encloses nothing, next to a closed largest
+///          component (remove_small_components with open_debris_only: no
+///          part goes for being small), hole filling (Liepa's
 ///          patch, no refinement, no enlargement, loops up to 500 vertices),
 ///          the final validity check
 /// remove non-finite vertices (with their faces) and isolated vertices

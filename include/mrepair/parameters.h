@@ -137,7 +137,7 @@ MREPAIR_ADD_NAMED_PARAMETER(jagged_loop_turning)           // loops whose jagged
 MREPAIR_ADD_NAMED_PARAMETER(boundary_erosion_share)        // share of a loop's region faces removable (0.5)
 // remove_small_components.h
 MREPAIR_ADD_NAMED_PARAMETER(relative_component_size)  // share of the largest component (0.01)
-MREPAIR_ADD_NAMED_PARAMETER(open_debris_only)         // bool: only open bits next to a closed largest component (false)
+MREPAIR_ADD_NAMED_PARAMETER(open_debris_only)         // bool: only open bits of < 4 faces enclosing nothing, next to a closed largest component (false)
 // fill_small_holes.h
 MREPAIR_ADD_NAMED_PARAMETER(hole_density_factor)    // patch edge length / hole boundary mean (1)
 MREPAIR_ADD_NAMED_PARAMETER(fair_hole_patches)      // bool, fair patches after refinement (false)
@@ -176,6 +176,8 @@ MREPAIR_ADD_NAMED_PARAMETER(after_stage)                    // callable (const c
 // resolve_intersections.h
 MREPAIR_ADD_NAMED_PARAMETER(merge_overlapping_shells)  // bool: union of overlapping closed shells (true)
 MREPAIR_ADD_NAMED_PARAMETER(max_local_rounds)          // rounds of the local repair of a shell crossing itself (3)
+// compare_to_reference.h
+MREPAIR_ADD_NAMED_PARAMETER(reference_tolerance)  // distance under which a reference vertex is on the output (1e-6 x diagonal)
 // adaptive_remesh.h
 MREPAIR_ADD_NAMED_PARAMETER(remesh_feature_angle)    // degrees; dihedral angle of a feature edge
 MREPAIR_ADD_NAMED_PARAMETER(remesh_min_edge_length)  // adaptive mode: lower clamp of L

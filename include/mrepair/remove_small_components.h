@@ -44,8 +44,10 @@ namespace mrepair {
 ///     fewer faces and less area than this share of the largest component
 ///   - `open_debris_only` (bool, default false): remove only open components
 ///     next to a closed largest component, when they have fewer than 4 faces
-///     or less than `relative_component_size` of its area (the stray facets
-///     of a print model); the `cad` profile of `clean_scan_mesh()` uses this
+///     and enclose nothing (no border loop is a hole by the hole filler's
+///     `max_hole_area_share` rule): the stray facets of a print model. Size
+///     plays no part: a closed part, or an open one of 4 faces or more, stays
+///     however small. The `cad` profile of `clean_scan_mesh()` uses this
 ///   - `vertex_point_map` (default: internal point map), for the areas
 ///   - `visitor` (default `Default_visitor`): phase "remove_small_components";
 ///     `stop_requested()` polled before any change

@@ -5,6 +5,7 @@
 #define MREPAIR_INTERNAL_CLEAN_SCAN_MESH_SMALL_COMPONENTS_H
 
 #include <mrepair/cleaning_results.h>
+#include <mrepair/definitions.h>
 #include <mrepair/internal/clean_scan_mesh/safety.h>
 #include <mrepair/internal/local_operations.h>
 
@@ -72,6 +73,35 @@ void find_small_components(const PM& pm, const FaceRange& seeds, std::size_t thr
   }
 }
 
+/// Open components with fewer faces than this are the debris the cad profile
+/// may remove (three facets, at most, hang together without closing a volume).
+constexpr std::size_t open_debris_faces = 4;
+
+/// true when no border loop of the open component made of the faces
+/// [first, last) (of total area `area`) is a hole by the hole filler's rule
+/// (doc/guarantees.md, "Hole or border"): a cap under `max_hole_area_share`
+/// of the component's area would close it into a volume. Three faces of a
+/// tetrahedron enclose one; a lone triangle, a quad or a strip do not.
+template <typename PM, typename VPM, typename FaceIterator>
+bool encloses_nothing(const PM& pm, const VPM& vpm, FaceIterator first, FaceIterator last, double area)
+{
+  using halfedge_descriptor = typename boost::graph_traits<PM>::halfedge_descriptor;
+  std::vector<halfedge_descriptor> walked;
+  for (FaceIterator f = first; f != last; ++f)
+    for (auto h : CGAL::halfedges_around_face(halfedge(*f, pm), pm)) {
+      const halfedge_descriptor b = opposite(h, pm);
+      if (!is_border(b, pm) || std::find(walked.begin(), walked.end(), b) != walked.end()) continue;
+      std::size_t steps = 0;  // a few faces: a loop of at most 3 x 3 edges
+      for (auto g : CGAL::halfedges_around_face(b, pm)) {
+        walked.push_back(g);
+        if (++steps > 64) return false;  // not a few faces after all: keep it
+      }
+      const double cap = loop_cap_area(b, pm, vpm);
+      if (cap > 0. && cap < defaults::max_hole_area_share * area) return false;
+    }
+  return true;
+}
+
 /// Removes the small components that contain a face of `seeds` (see
 /// `find_small_components()`). A component is small when it has fewer than
 /// `threshold` faces and, relative to the largest component (most faces),
@@ -106,8 +136,8 @@ Small_components_result remove_small_components_seeded(Local_operations<PM, VPM>
     if (faces_of[c] > faces_of[largest] ||
         (faces_of[c] == faces_of[largest] && area_of[c] > area_of[largest]))
       largest = c;
-  // Debris mode (print models): only open bits next to a closed largest
-  // component go, whatever their face count (a stray facet by a solid).
+  // Debris mode (print models): only open bits of a few faces next to a
+  // closed largest component go (a stray facet by a solid).
   std::vector<char> open(open_debris_only ? faces_of.size() : 0, 0);
   if (open_debris_only) {
     for (auto h : halfedges(pm))
@@ -121,12 +151,16 @@ Small_components_result remove_small_components_seeded(Local_operations<PM, VPM>
       r.kept_largest = true;
       continue;
     }
-    // debris: open, and either a few stray facets (under 4 faces: no volume,
-    // whatever their size) or small in area next to the solid
-    const bool removable = open_debris_only
-                           ? open[label] && (nf < 4 || area_of[label] < relative * area_of[largest])
-                           : double(nf) < relative * double(faces_of[largest]) &&
-                                 area_of[label] < relative * area_of[largest];
+    // debris (issue 50): open, a few stray facets (under 4 faces), and
+    // enclosing nothing (no border loop the hole filler would close). A part
+    // that is closed, or can be closed, stays however small.
+    const bool removable =
+        open_debris_only
+            ? open[label] && nf < open_debris_faces &&
+                  encloses_nothing(pm, vpm, small.begin() + offsets[c], small.begin() + offsets[c + 1],
+                                   area_of[label])
+            : double(nf) < relative * double(faces_of[largest]) &&
+                  area_of[label] < relative * area_of[largest];
     if (!removable) {
       ++r.components_kept_relative;
       continue;
