@@ -20,12 +20,14 @@
 #include <mrepair/triangulate_polygons.h>
 
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
 
 // where the build puts the HTML report template (tools/CMakeLists.txt), and
-// where `make install` puts it
+// where `make install` puts it; both "" in a relocatable build (MREPAIR_RELOCATABLE,
+// the pip package), which finds it beside the program only
 #ifndef MREPAIR_STUDIO_BUILD_DIR
 #define MREPAIR_STUDIO_BUILD_DIR ""
 #endif
@@ -137,13 +139,25 @@ bool save_soup(const std::string& path, const std::vector<Point>& points,
 
 // ---- the HTML report (doc/studio.md) ------------------------------------------------
 
-/// the HTML report template: $MREPAIR_STUDIO_ASSETS, the build's studio
-/// folder, the installed one. "" and a message saying how to get it when none has it.
+/// <prefix>/share/mrepair/studio for this program at <prefix>/bin/mrepair: where
+/// `cmake --install` and pip put the web assets beside it, wherever the prefix
+/// (a venv, a moved install) now is. "" when /proc/self/exe cannot be read.
+inline std::string studio_dir_beside_program()
+{
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec || exe.empty()) return "";
+  return (exe.parent_path().parent_path() / "share" / "mrepair" / "studio").string();
+}
+
+/// the HTML report template: $MREPAIR_STUDIO_ASSETS, the folder beside the
+/// program, the build's studio folder, the configured install folder. "" and a
+/// message saying how to get it when none has it.
 inline std::string studio_template(std::string& error)
 {
   std::string tried;
-  const std::string path =
-      internal::find_studio_template(MREPAIR_STUDIO_BUILD_DIR, MREPAIR_STUDIO_INSTALL_DIR, tried);
+  const std::string path = internal::find_studio_template(
+      {studio_dir_beside_program(), MREPAIR_STUDIO_BUILD_DIR, MREPAIR_STUDIO_INSTALL_DIR}, tried);
   if (path.empty())
     error = std::string("--html: no report template (") + internal::studio_template_name + ") in " +
             (tried.empty() ? "any folder" : tried) +

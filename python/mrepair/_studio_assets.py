@@ -5,7 +5,9 @@ the page reads (the payload contract of doc/studio.md)."""
 
 import base64
 import os
+import site
 import sys
+import sysconfig
 
 import numpy as np
 
@@ -25,15 +27,23 @@ def _configured_dirs():
     return [d for d in (getattr(_paths, "STUDIO_BUILD_DIR", ""), getattr(_paths, "STUDIO_INSTALL_DIR", "")) if d]
 
 
+def installed_prefixes():
+    """the prefixes pip installs this package's data files under: the environment's
+    (a venv, or Debian's /usr/local), sys.prefix, and the user's (``pip install --user``)."""
+    prefixes = [sysconfig.get_path("data"), sys.prefix, site.getuserbase()]
+    return [p for i, p in enumerate(prefixes) if p and p not in prefixes[:i]]
+
+
 def studio_asset_dirs():
     """the candidate folders, in the order they are tried: env MREPAIR_STUDIO_ASSETS alone when
     it is set (as the CLI: a folder named on purpose is never silently replaced), else the
-    build folder, the install folder, <sys.prefix>/share/mrepair/studio."""
+    build folder, the install folder, <prefix>/share/mrepair/studio for each installed_prefixes()
+    (where `pip install` puts them)."""
     env = os.environ.get("MREPAIR_STUDIO_ASSETS")
     if env:
         return [env]
     dirs = _configured_dirs()
-    dirs.append(os.path.join(sys.prefix, "share", "mrepair", "studio"))
+    dirs += [os.path.join(p, "share", "mrepair", "studio") for p in installed_prefixes()]
     return dirs
 
 
@@ -45,9 +55,9 @@ def find_studio_assets(required=TEMPLATE):
         if os.path.isfile(os.path.join(d, required)):
             return d
     raise FileNotFoundError(
-        "the mrepair studio's web assets (%s) were not found in %s; build them with "
-        "`cmake --build BUILD --target mrepair-studio-assets` (needs Node.js and npm) or set "
-        "MREPAIR_STUDIO_ASSETS to the folder that holds them" % (required, ", ".join(dirs)))
+        "the mrepair studio's web assets (%s) were not found in %s; `pip install .` installs them "
+        "(with Node.js and npm), `cmake --build BUILD --target mrepair-studio-assets` builds them, "
+        "or set MREPAIR_STUDIO_ASSETS to the folder that holds them" % (required, ", ".join(dirs)))
 
 
 def b64(array, dtype):

@@ -19,9 +19,11 @@ down; the outputs, the manifest format and the resume rule are those of
 ``mrepair batch`` by construction.
 
 Workers need the ``mrepair`` program (the one this driver found, when the
-same path exists there, else ``MREPAIR_CLI``, else on ``PATH``) and the input and
-output folders at the same paths (a shared file system). They do not need
-this package: the task is sent by value.
+same path exists there, else ``MREPAIR_CLI``, else on ``PATH``, else the one
+``pip install`` put in the worker interpreter's environment) and the input and
+output folders at the same paths (a shared file system). A worker with this
+package installed needs nothing else; one without it needs only the program:
+the task is sent by value.
 """
 
 import argparse
@@ -54,17 +56,33 @@ STATUSES = {
 }
 
 
+def _installed_cli():
+    """the ``mrepair`` program ``pip install`` put beside this interpreter (the
+    environment's bin/, also when that is not on PATH: an inactive venv), or None."""
+    import site
+    import sysconfig
+
+    for d in (sysconfig.get_path("scripts"), os.path.join(sys.prefix, "bin"),
+              os.path.join(site.getuserbase(), "bin")):
+        exe = os.path.join(d, "mrepair")
+        if os.path.isfile(exe) and os.access(exe, os.X_OK):
+            return exe
+    return None
+
+
 def find_cli(cli=None):
     """the ``mrepair`` program: ``cli`` when given, else ``$MREPAIR_CLI``, else
-    ``mrepair`` on ``PATH``, else the one built beside this package (the build
+    ``mrepair`` on ``PATH``, else the one installed with this package (the
+    environment's ``bin/``), else the one built beside this package (the build
     tree's ``tools/mrepair``)."""
-    candidates = [cli, os.environ.get("MREPAIR_CLI"), shutil.which("mrepair")]
+    candidates = [cli, os.environ.get("MREPAIR_CLI"), shutil.which("mrepair"), _installed_cli()]
     here = Path(__file__).resolve().parent
     candidates += [here.parent.parent / "tools" / "mrepair", here / "mrepair"]
     for c in candidates:
         if c and Path(c).is_file() and os.access(str(c), os.X_OK):
             return str(Path(c).resolve())
-    raise FileNotFoundError("cannot find the mrepair program: set MREPAIR_CLI or put it on PATH")
+    raise FileNotFoundError("cannot find the mrepair program: `pip install .` installs it; "
+                            "else set MREPAIR_CLI or put it on PATH")
 
 
 def _is_mesh(name):
@@ -143,7 +161,8 @@ def _limit_arguments(timeout, memory, threads_per_job):
 def _repair_file(cli, root, out_dir, rel, args):
     """one Dask task: ``mrepair batch ROOT OUT --file REL --manifest -`` -> its manifest line (a dict)."""
     # the driver's program when this machine has it at the same path, else this machine's own
-    exe = cli if os.path.isfile(cli) else (os.environ.get("MREPAIR_CLI") or shutil.which("mrepair") or cli)
+    exe = cli if os.path.isfile(cli) else (os.environ.get("MREPAIR_CLI") or shutil.which("mrepair")
+                                           or _installed_cli() or cli)
     command = [exe, "batch", str(root), str(out_dir), "--file", rel, "--manifest", "-", "--jobs", "1", "--quiet", *args]
     try:
         done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -306,7 +325,7 @@ def main(argv=None):
     p.add_argument("--timeout", type=float, help="seconds one file may take (default: no limit)")
     p.add_argument("--memory", type=int, help="MB of address space one repair may use (default: no limit)")
     p.add_argument("--threads-per-job", type=int, help="threads of each repair")
-    p.add_argument("--cli", help="the mrepair program (default: $MREPAIR_CLI, PATH, beside this package)")
+    p.add_argument("--cli", help="the mrepair program (default: $MREPAIR_CLI, PATH, the one installed with this package)")
     p.add_argument("--quiet", action="store_true", help="print no progress")
     args, rest = p.parse_known_args(argv)
     # the rest are `mrepair repair` options, passed on as they are (checked by the program)

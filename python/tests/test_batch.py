@@ -122,3 +122,23 @@ def test_module_from_the_shell(dataset, cluster, tmp_path):
     assert r.returncode == 0, r.stderr
     assert r.stdout.startswith("batch: 2 files")
     assert sorted(l["path"] for l in lines(out / "manifest.jsonl")) == ["deeper/part1.stl", "scan2.off"]
+
+
+def test_finds_the_program_installed_beside_the_interpreter(tmp_path, monkeypatch):
+    """no MREPAIR_CLI, nothing on PATH: the ``mrepair`` pip put in the environment's
+    bin/ (an inactive venv), before the build tree's."""
+    import sysconfig
+
+    scripts = tmp_path / "venv" / "bin"
+    scripts.mkdir(parents=True)
+    installed = scripts / "mrepair"
+    installed.write_bytes(Path(CLI).read_bytes())
+    installed.chmod(0o755)
+    real_get_path = sysconfig.get_path
+    monkeypatch.setattr(sysconfig, "get_path",
+                        lambda name, *a, **k: str(scripts) if name == "scripts" else real_get_path(name, *a, **k))
+    monkeypatch.delenv("MREPAIR_CLI", raising=False)
+    monkeypatch.setenv("PATH", str(tmp_path / "empty"))
+    assert mbatch.find_cli() == str(installed.resolve())
+    # one given by name still comes first
+    assert mbatch.find_cli(CLI) == str(Path(CLI).resolve())

@@ -365,6 +365,36 @@ def test_cli_inspect_html(tmp_path):
 
 
 @needs_cli
+def test_cli_finds_the_template_beside_itself(tmp_path):
+    """a program at PREFIX/bin/mrepair reads PREFIX/share/mrepair/studio before any folder
+    compiled into it (a pip or moved install), and MREPAIR_STUDIO_ASSETS before that."""
+    prefix = tmp_path / "prefix"
+    (prefix / "bin").mkdir(parents=True)
+    assets = prefix / "share" / "mrepair" / "studio"
+    assets.mkdir(parents=True)
+    (assets / "report_template.html").write_text(STAND_IN.replace("stand-in", "beside the program"))
+    cli = prefix / "bin" / "mrepair"
+    cli.write_bytes(Path(CLI).read_bytes())
+    cli.chmod(0o755)
+    V, F = grid(2, 2)
+    src = tmp_path / "in.off"
+    mrepair.write(src, V, F)
+    env = {k: v for k, v in os.environ.items() if k != "MREPAIR_STUDIO_ASSETS"}
+    html = tmp_path / "report.html"
+    run = subprocess.run([str(cli), "inspect", str(src), "--html", str(html)], capture_output=True, text=True,
+                         env=env)
+    assert run.returncode == 0, run.stderr
+    assert "<title>beside the program</title>" in html.read_text()
+    named = tmp_path / "named"
+    named.mkdir()
+    (named / "report_template.html").write_text(STAND_IN.replace("stand-in", "named"))
+    run = subprocess.run([str(cli), "inspect", str(src), "--html", str(html)], capture_output=True, text=True,
+                         env=dict(env, MREPAIR_STUDIO_ASSETS=str(named)))
+    assert run.returncode == 0, run.stderr
+    assert "<title>named</title>" in html.read_text()
+
+
+@needs_cli
 def test_cli_html_without_template_fails_before_work(tmp_path):
     V, F = grid(2, 2)
     src = tmp_path / "in.off"

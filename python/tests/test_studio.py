@@ -5,7 +5,10 @@ itself is tested in a real browser by studio/test/studio.test.mjs (CTest
 studio_browser)."""
 
 import json
+import os
 import struct
+import sys
+import sysconfig
 import threading
 import urllib.error
 import urllib.request
@@ -136,6 +139,28 @@ def test_export_and_remesh(studio, tmp_path):
     res = json.loads(call("/api/remesh", {"mode": "uniform", "source": "input", "edge_length": 0.3})[2])
     _, F2, _ = mrepair.remesh(V, F, edge_length=0.3)
     assert res["faces"] == len(F2)
+
+
+def test_assets_found_under_the_install_prefixes(tmp_path, monkeypatch):
+    """a pip install puts the assets in <prefix>/share/mrepair/studio, prefix the
+    environment's or the user's (--user): found with no variable and no build folder."""
+    import site
+    from mrepair import _studio_assets
+
+    monkeypatch.delenv("MREPAIR_STUDIO_ASSETS", raising=False)
+    monkeypatch.setattr(_studio_assets, "_configured_dirs", lambda: [])
+    monkeypatch.setattr(site, "getuserbase", lambda: str(tmp_path))
+    dirs = _studio_assets.studio_asset_dirs()
+    assert dirs[0] == os.path.join(sysconfig.get_path("data"), "share", "mrepair", "studio")
+    assert os.path.join(sys.prefix, "share", "mrepair", "studio") in dirs
+    assets = tmp_path / "share" / "mrepair" / "studio"
+    assert dirs[-1] == str(assets)
+    with pytest.raises(FileNotFoundError, match="pip install"):
+        _studio_assets.find_studio_assets("no-such-file.html")
+    assets.mkdir(parents=True)
+    (assets / "index.html").write_text("<!doctype html>")
+    if not any(os.path.isfile(os.path.join(d, "index.html")) for d in dirs[:-1]):
+        assert _studio_assets.find_studio_assets("index.html") == str(assets)
 
 
 def test_html_report(tmp_path, monkeypatch):

@@ -115,22 +115,21 @@ inline bool is_readable_file(const std::string& path)
 }
 
 // The report template: in $MREPAIR_STUDIO_ASSETS when it is set (and then
-// only there: a folder named on purpose is not silently replaced), else in
-// `build_dir` (the build's studio folder, compiled in), else in
-// `install_dir`. Returns its path, or "" and in `tried` the folders looked at.
-inline std::string find_studio_template(const std::string& build_dir, const std::string& install_dir,
-                                        std::string& tried)
+// only there: a folder named on purpose is not silently replaced), else in the
+// first of `dirs` (in order; empty entries skipped) that holds it. Returns its
+// path, or "" and in `tried` the folders looked at.
+inline std::string find_studio_template(const std::vector<std::string>& dirs, std::string& tried)
 {
-  std::vector<std::string> dirs;
+  std::vector<std::string> candidates;
   const char* env = std::getenv("MREPAIR_STUDIO_ASSETS");
   if (env && *env) {
-    dirs.push_back(env);
+    candidates.push_back(env);
   } else {
-    if (!build_dir.empty()) dirs.push_back(build_dir);
-    if (!install_dir.empty()) dirs.push_back(install_dir);
+    for (const std::string& d : dirs)
+      if (!d.empty()) candidates.push_back(d);
   }
   tried.clear();
-  for (const std::string& d : dirs) {
+  for (const std::string& d : candidates) {
     const std::string p = d + "/" + studio_template_name;
     if (is_readable_file(p)) return p;
     tried += (tried.empty() ? "" : ", ") + d;
