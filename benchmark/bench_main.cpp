@@ -1,8 +1,8 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
-// mrepair-bench TASK INPUT [--csv] [--only NAME] [--reference FILE]: runs every variant of TASK on
-// INPUT, each in its own forked process (fresh heap, own peak RSS), and
+// mrepair-bench TASK INPUT [--csv] [--only NAME] [--reference FILE] [--json FILE]: runs every
+// variant of TASK on INPUT, each in its own forked process (fresh heap, own peak RSS), and
 // prints time, ratio to the mrepair variant, peak memory and the reports side
-// by side.
+// by side; --json also writes them to FILE (values as strings, keys section.key).
 #include "bench.h"
 
 #include <CGAL/version.h>
@@ -15,6 +15,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -120,7 +121,7 @@ Outcome run_variant(const Variant& v, const std::string& input)
 
 void usage()
 {
-  std::cout << "usage: mrepair-bench TASK INPUT [--csv] [--only NAME] [--reference FILE]\n\ntasks:\n";
+  std::cout << "usage: mrepair-bench TASK INPUT [--csv] [--only NAME] [--reference FILE] [--json FILE]\n\ntasks:\n";
   for (const Task& t : mrepair::bench::tasks()) {
     std::cout << "  " << t.name << ": " << t.summary << "\n    variants:";
     for (const Variant& v : t.variants) std::cout << " [" << v.name << "]";
@@ -143,7 +144,7 @@ int main(int argc, char** argv)
     usage();
     return argc < 2 ? 2 : (std::string(argv[1]) == "--help" ? 0 : 2);
   }
-  std::string task_name = argv[1], input = argv[2], only;
+  std::string task_name = argv[1], input = argv[2], only, json_path;
   bool csv = false;
   for (int i = 3; i < argc; ++i) {
     std::string a = argv[i];
@@ -151,6 +152,8 @@ int main(int argc, char** argv)
       csv = true;
     else if (a == "--only" && i + 1 < argc)
       only = argv[++i];
+    else if (a == "--json" && i + 1 < argc)
+      json_path = argv[++i];
     else if (a == "--reference" && i + 1 < argc)
       mrepair::bench::reference_path() = argv[++i];
     else {
@@ -186,6 +189,25 @@ int main(int argc, char** argv)
     }
 
   const double base = outcomes.empty() || !outcomes[0].ran ? 0 : outcomes[0].seconds;
+  if (!json_path.empty()) {
+    using mrepair::json_escape;
+    std::ofstream js(json_path);
+    js << "{\"task\": \"" << json_escape(task->name) << "\", \"input\": \"" << json_escape(input)
+       << "\", \"cgal\": \"" << CGAL_VERSION_STR << "\", \"variants\": [";
+    for (std::size_t i = 0; i < outcomes.size(); ++i) {
+      const Outcome& o = outcomes[i];
+      js << (i ? ",\n  " : "\n  ") << "{\"name\": \"" << json_escape(chosen[i]->name)
+         << "\", \"ran\": " << (o.ran ? "true" : "false") << ", \"seconds\": " << o.seconds
+         << ", \"peak_mb\": " << o.peak_mb << ", \"status\": \""
+         << json_escape(o.ran ? o.status : o.failure) << "\", \"values\": {";
+      for (std::size_t k = 0; k < o.rows.size(); ++k)
+        js << (k ? ", " : "") << "\"" << json_escape(o.rows[k].first) << "\": \""
+           << json_escape(o.rows[k].second) << "\"";
+      js << "}}";
+    }
+    js << "\n]}\n";
+    if (!js) std::cerr << "mrepair-bench: cannot write " << json_path << "\n";
+  }
   if (csv) {
     std::cout << "task,input,variant,seconds,ratio_to_first,peak_mb,status\n";
     for (std::size_t i = 0; i < outcomes.size(); ++i)
