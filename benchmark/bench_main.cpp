@@ -1,8 +1,9 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
-// mrepair-bench TASK [INPUT] [--csv] [--only NAME] [--reference FILE]: runs every variant of TASK on
-// INPUT, each in its own forked process (fresh heap, own peak RSS), and
+// mrepair-bench TASK [INPUT] [--csv] [--only NAME] [--reference FILE] [--json FILE]: runs every
+// variant of TASK on INPUT, each in its own forked process (fresh heap, own peak RSS), and
 // prints time, ratio to the mrepair variant, peak memory and the reports side
-// by side. Without INPUT a task runs on its default input, generated once by
+// by side; --json also writes them to FILE (values as strings, keys
+// section.key). Without INPUT a task runs on its default input, generated once by
 // the project's own generator (`mrepair-generate`) into the data folder.
 // `mrepair-bench job-table` prints the whole-job comparison (medians of paired
 // runs); `mrepair-bench all` runs every task once on its default input.
@@ -20,6 +21,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -127,7 +129,8 @@ Outcome run_variant(const Variant& v, const std::string& input)
 void usage()
 {
   std::cout
-      << "usage: mrepair-bench TASK [INPUT] [--csv] [--only NAME] [--reference FILE] [--faces N] [--data DIR]\n"
+      << "usage: mrepair-bench TASK [INPUT] [--csv] [--only NAME] [--reference FILE] [--json FILE] [--faces N]\n"
+         "                     [--data DIR]\n"
          "       mrepair-bench job-table [--runs K] [--faces N] [--data DIR] [--csv]\n"
          "       mrepair-bench all [--faces N] [--data DIR]\n"
          "       (--task NAME may stand for TASK)\n\n"
@@ -274,7 +277,8 @@ double median(std::vector<double> v)
 
 // Runs every variant of `task` on `input` and prints the table (or CSV rows).
 // Returns the outcomes in the order of the task's variants (those run).
-std::vector<Outcome> run_task(const Task* task, const std::string& input, bool csv, const std::string& only)
+std::vector<Outcome> run_task(const Task* task, const std::string& input, bool csv, const std::string& only,
+                              const std::string& json_path = "")
 {
   std::vector<const Variant*> chosen;
   std::vector<Outcome> outcomes;
@@ -295,6 +299,25 @@ std::vector<Outcome> run_task(const Task* task, const std::string& input, bool c
     }
 
   const double base = outcomes.empty() || !outcomes[0].ran ? 0 : outcomes[0].seconds;
+  if (!json_path.empty()) {
+    using mrepair::json_escape;
+    std::ofstream js(json_path);
+    js << "{\"task\": \"" << json_escape(task->name) << "\", \"input\": \"" << json_escape(input)
+       << "\", \"cgal\": \"" << CGAL_VERSION_STR << "\", \"variants\": [";
+    for (std::size_t i = 0; i < outcomes.size(); ++i) {
+      const Outcome& o = outcomes[i];
+      js << (i ? ",\n  " : "\n  ") << "{\"name\": \"" << json_escape(chosen[i]->name)
+         << "\", \"ran\": " << (o.ran ? "true" : "false") << ", \"seconds\": " << o.seconds
+         << ", \"peak_mb\": " << o.peak_mb << ", \"status\": \""
+         << json_escape(o.ran ? o.status : o.failure) << "\", \"values\": {";
+      for (std::size_t k = 0; k < o.rows.size(); ++k)
+        js << (k ? ", " : "") << "\"" << json_escape(o.rows[k].first) << "\": \""
+           << json_escape(o.rows[k].second) << "\"";
+      js << "}}";
+    }
+    js << "\n]}\n";
+    if (!js) std::cerr << "mrepair-bench: cannot write " << json_path << "\n";
+  }
   if (csv) {
     std::cout << "task,input,variant,seconds,ratio_to_first,peak_mb,status\n";
     for (std::size_t i = 0; i < outcomes.size(); ++i)
@@ -443,7 +466,7 @@ int run_all(std::size_t faces, const std::string& dir)
 
 int main(int argc, char** argv)
 {
-  std::string task_name, input, only, data_dir = default_data_dir();
+  std::string task_name, input, only, json_path, data_dir = default_data_dir();
   bool csv = false;
   int runs = 3;
   std::size_t faces = 1000000;
@@ -458,6 +481,8 @@ int main(int argc, char** argv)
         csv = true;
       } else if (a == "--only" && has_value) {
         only = argv[++i];
+      } else if (a == "--json" && has_value) {
+        json_path = argv[++i];
       } else if (a == "--reference" && has_value) {
         mrepair::bench::reference_path() = argv[++i];
       } else if (a == "--task" && has_value) {
@@ -506,7 +531,7 @@ int main(int argc, char** argv)
       if (!clean.empty() && clean != input && mrepair::bench::reference_path().empty())
         mrepair::bench::reference_path() = clean;  // the cleaning tasks' Hausdorff distance to it
     }
-    run_task(task, input, csv, only);
+    run_task(task, input, csv, only, json_path);
   } catch (const std::exception& e) {
     std::cerr << "mrepair-bench: " << e.what() << "\n";
     return 1;

@@ -3,7 +3,8 @@
 // CGAL's PMP::isotropic_remeshing, same target length, same iterations, sharp
 // edges from PMP::detect_sharp_edges given to CGAL as constrained edges (the
 // same dihedral angle is mrepair's feature angle). Task "remesh_adaptive":
-// adaptive_remesh beside uniform mrepair remeshing at the same face count and,
+// adaptive_remesh beside remesh_to_face_count at the same face count (adaptive
+// too since issue 52) and,
 // built on CGAL 6, beside PMP::isotropic_remeshing with CGAL's
 // Adaptive_sizing_field (curvature-adaptive after Dunyach et al. as well): the
 // same tolerance, the same length clamps (mrepair's defaults: the tolerance and
@@ -15,8 +16,9 @@
 // (default 3), MREPAIR_REMESH_ANGLE (degrees, default 44),
 // MREPAIR_REMESH_TOLERANCE (adaptive epsilon, default 0.001 x bbox diagonal),
 // MREPAIR_REMESH_LMAX (adaptive largest length, default 0.05 x bbox diagonal),
-// MREPAIR_REMESH_FACES (adaptive task: face count of the uniform run; default
-// the adaptive result's).
+// MREPAIR_REMESH_FACES (adaptive task: face count of the remesh_to_face_count
+// run; default the adaptive result's). The sweep over tolerances is the task
+// remesh-adaptive-sweep (bench_remesh_sweep.cpp).
 #include "bench.h"
 
 #include <mrepair/adaptive_remesh.h>
@@ -207,7 +209,7 @@ mrepair::bench::Measurement run_cgal(const std::string& path)
   });
 }
 
-// adaptive at tolerance eps, then uniform at the adaptive face count (or MREPAIR_REMESH_FACES)
+// adaptive at tolerance eps
 mrepair::bench::Measurement run_adaptive(const std::string& path)
 {
   mrepair::bench::Measurement m;
@@ -293,7 +295,7 @@ mrepair::bench::Task_registrar reg{
 
 mrepair::bench::Task_registrar reg_adaptive{
     {"remesh_adaptive",
-     "adaptive_remesh vs uniform remeshing at the same face count"
+     "adaptive_remesh vs remesh_to_face_count at the same face count"
 #if CGAL_VERSION_NR >= 1060000000
      " and CGAL 6's Adaptive_sizing_field"
 #endif

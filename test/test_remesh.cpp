@@ -394,7 +394,19 @@ TYPED_TEST(Remesh, part_leaves_rest_identical)
     EXPECT_NEAR(std::sqrt((pt(m, v) - CGAL::ORIGIN).squared_length()), 1.0, 0.02);
 }
 
-// Adaptive: fewer faces than uniform for the same error on a shape of varying curvature.
+// area of a triangle mesh
+template <typename Mesh>
+double mesh_area(const Mesh& m)
+{
+  double a = 0;
+  for (auto f : faces(m)) {
+    auto h = halfedge(f, m);
+    a += std::sqrt(CGAL::squared_area(pt(m, source(h, m)), pt(m, target(h, m)), pt(m, target(next(h, m), m))));
+  }
+  return a;
+}
+
+// Adaptive: a smaller error than uniform with as many faces on a shape of varying curvature.
 TYPED_TEST(Remesh, adaptive_beats_uniform_on_ellipsoid)
 {
   using Mesh = typename TypeParam::Mesh;
@@ -407,17 +419,22 @@ TYPED_TEST(Remesh, adaptive_beats_uniform_on_ellipsoid)
   expect_valid(a);
   EXPECT_LT(ra.min_target, ra.max_target);
   const double ha = one_sided_distance(a, input);
+  // uniform with the edge length of equilateral triangles at the same count
   Mesh u = input;
-  auto ru = mrepair::remesh_to_face_count(u, face_count(a));
+  const double L = std::sqrt(4. * mesh_area(input) / (std::sqrt(3.) * double(face_count(a))));
+  auto ru = mrepair::isotropic_remesh(u, L);
   ASSERT_EQ(ru.status, mrepair::Status::ok) << ru.message;
   expect_valid(u);
-  EXPECT_NEAR(double(face_count(u)), double(face_count(a)), 0.1 * face_count(a));
   const double hu = one_sided_distance(u, input);
   EXPECT_LT(ha, hu) << "adaptive " << face_count(a) << " faces, " << ha << "; uniform "
                     << face_count(u) << " faces, " << hu;
+  // the error control keeps the sampled deviation near the tolerance
+  EXPECT_LT(ha, 2 * 0.002);
 }
 
-TYPED_TEST(Remesh, face_count_within_ten_percent)
+// remesh_to_face_count: within 2% of the count, adaptive (a smaller error
+// than uniform remeshing at about the same count) and its tolerance reported
+TYPED_TEST(Remesh, face_count_within_two_percent)
 {
   using Mesh = typename TypeParam::Mesh;
   for (std::size_t n : {500u, 4000u}) {
@@ -425,7 +442,24 @@ TYPED_TEST(Remesh, face_count_within_ten_percent)
     auto r = mrepair::remesh_to_face_count(m, n);
     ASSERT_EQ(r.status, mrepair::Status::ok);
     expect_valid(m);
-    EXPECT_NEAR(double(face_count(m)), double(n), 0.1 * n);
+    EXPECT_NEAR(double(face_count(m)), double(n), 0.02 * n);
+    EXPECT_EQ(r.target_faces, n);
+  }
+  Soup s = icosphere(5);
+  for (Point& p : s.points) p = Point(3 * p.x(), p.y(), 0.5 * p.z());
+  const Mesh input = to_mesh<Mesh>(s);
+  for (std::size_t n : {1500u, 6000u}) {
+    Mesh m = input;
+    auto r = mrepair::remesh_to_face_count(m, n);
+    ASSERT_EQ(r.status, mrepair::Status::ok) << r.message;
+    expect_valid(m);
+    EXPECT_NEAR(double(face_count(m)), double(n), 0.02 * n);
+    EXPECT_GT(r.tolerance, 0.);
+    Mesh u = input;
+    const double L = std::sqrt(4. * mesh_area(input) / (std::sqrt(3.) * double(face_count(m))));
+    ASSERT_EQ(mrepair::isotropic_remesh(u, L).status, mrepair::Status::ok);
+    EXPECT_LT(one_sided_distance(m, input), one_sided_distance(u, input))
+        << n << " faces: adaptive " << face_count(m) << ", uniform " << face_count(u);
   }
 }
 

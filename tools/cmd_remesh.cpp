@@ -20,7 +20,7 @@ namespace cli = mrepair::cli;
 const std::vector<cli::Option> options = {
     {"edge-length", true, "uniform remeshing to target edge length L"},
     {"tolerance", true, "curvature-adaptive remeshing with approximation tolerance E"},
-    {"faces", true, "uniform remeshing to about N faces"},
+    {"faces", true, "curvature-adaptive remeshing to N faces (within 2%)"},
     {"feature-angle", true, "dihedral angle (degrees) of feature edges (default 44; 0 = none)"},
     {"iterations", true, "number of iterations (default 10)"},
     {"min-edge-length", true, "adaptive: smallest target length (default E)"},

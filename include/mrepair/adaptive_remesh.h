@@ -104,9 +104,11 @@ Remeshing_result remesh_entry(TriangleMesh& tm, const FaceRange* part, Remesh_mo
       return fail(Status::non_finite_input, "a vertex coordinate is NaN or infinite");
   const double diag = finite_bbox_diagonal(tm, vpm);
   if (!(diag <= max_bbox_diagonal)) return fail(Status::non_finite_input, coordinates_too_large_message);
+  o.has_min_edge_length = !is_default_parameter<NP, internal_np::remesh_min_edge_length_t>::value;
   o.min_edge_length = internal::get_or(np, internal_np::remesh_min_edge_length, value);
-  o.max_edge_length =
-      internal::get_or(np, internal_np::remesh_max_edge_length, diag / 20.);
+  // face count: no upper clamp unless given (a small count needs long edges)
+  o.max_edge_length = internal::get_or(np, internal_np::remesh_max_edge_length,
+                                       mode == Remesh_mode::face_count ? 2. * diag : diag / 20.);
 
   Visitor_handle<NP> vis(np);
   return remesh_driver<parallel>(tm, part, mode, value, o, vpm, ecm, vcm, vis, res);
@@ -199,12 +201,17 @@ Remeshing_result adaptive_remesh(const FaceRange& face_range, TriangleMesh& tm, 
 }
 
 /// \ingroup mrepair_remesh
-/// uniform remeshing to about `target_faces` faces (within 10% on closed smooth
-/// shapes): L is estimated from the area, then corrected from the face count
-/// reached, 3 more iterations per correction. Splits plus collapses are capped
-/// at 100 per input and per target face: a surface far thinner than the target
-/// length in one direction returns `partial` (valid mesh, count not reached).
-/// \param np as `isotropic_remesh`
+/// adaptive remeshing to `target_faces` faces (within 2% on closed smooth
+/// shapes): the curvature sizing field of `adaptive_remesh`, at the tolerance
+/// whose field predicts `target_faces` (bisection on the predicted count), with
+/// the same error control; then the field is scaled by sqrt(faces / target)
+/// until the count is within 1.5%, 3 iterations per correction. Splits plus
+/// collapses are capped at 100 per input and per target face: a surface far
+/// thinner than the target length in one direction returns `partial` (valid
+/// mesh, count not reached). `res.tolerance` is the tolerance found.
+/// \param np as `adaptive_remesh`, except that `remesh_max_edge_length` has no
+///        default clamp (twice the bounding-box diagonal) and
+///        `remesh_min_edge_length` defaults to the tolerance found
 template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh,
           typename CGAL_NP_TEMPLATE_PARAMETERS>
 Remeshing_result remesh_to_face_count(TriangleMesh& tm, std::size_t target_faces,

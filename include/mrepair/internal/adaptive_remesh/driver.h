@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <string>
 
 namespace mrepair {
@@ -45,6 +46,7 @@ struct Remesh_options
   double feature_angle = defaults::remesh_feature_angle;  ///< degrees; <= 0 or >= 180: no detection
   bool has_ecm = false;      ///< an edge_is_constrained_map was given
   double min_edge_length = 0, max_edge_length = 0;  ///< adaptive mode
+  bool has_min_edge_length = false;  ///< remesh_min_edge_length was given
 };
 
 /// a result with the mode and the counts of the input filled in.
@@ -66,6 +68,84 @@ inline Remeshing_result refuse_remeshing(Remeshing_result res, Status s, const s
   res.status = s;
   res.message = m;
   return res;
+}
+
+/// `iterations` of adaptive remeshing at tolerance `eps`, with the sizing
+/// lowered around the faces that deviate more than `limit` (to reach `goal`)
+/// after 2/5 and 7/10 of them (Remesher::refine_deviating_faces).
+template <typename Remesher, typename VisitorHandle>
+Status run_with_error_control(Remesher& R, int iterations, bool project, double limit, double goal,
+                              double lmin, VisitorHandle& vis)
+{
+  if (iterations < 4) return R.run(iterations, project, vis);
+  const int first = (2 * iterations) / 5, second = (7 * iterations) / 10 - first;
+  Status st = R.run(first, project, vis, false);
+  if (st != Status::ok) return st;
+  R.refine_deviating_faces(limit, goal, lmin);
+  st = R.run(second, project, vis, false);
+  if (st != Status::ok) return st;
+  R.refine_deviating_faces(limit, goal, lmin);
+  return R.run(iterations - first - second, project, vis);
+}
+
+/// adaptive remeshing to `value` faces: the tolerance whose sizing field
+/// predicts that count (bisection), then the sizing scaled by the square root
+/// of the count reached over the target until within 1.5% (`outside`: faces
+/// not remeshed). Splits plus collapses are capped at 100 per input and per
+/// target face (a surface far thinner than the target length: `partial`).
+template <typename Remesher, typename TriangleMesh, typename VisitorHandle>
+Status remesh_to_count(Remesher& R, const Remesh_options& o, double value, std::size_t outside,
+                       TriangleMesh& tm, VisitorHandle& vis, Remeshing_result& res)
+{
+  auto& rf = R.reference();
+  const double N = value;
+  res.target_faces = static_cast<std::size_t>(N);
+  double area = 0, perimeters = 0;
+  for (const auto& t : rf.triangles) {
+    area += 0.5 * norm(triangle_normal(rf.points[t[0]], rf.points[t[1]], rf.points[t[2]]));
+    for (int k = 0; k < 3; ++k) perimeters += norm(rf.points[t[(k + 1) % 3]] - rf.points[t[k]]);
+  }
+  const double lmax = o.max_edge_length / o.density;
+  // a few very long, thin triangles have little area but would be split into
+  // edge length / L pieces (out of memory): no length below ~perimeters / 200 N
+  const double uniform_L = std::sqrt(4. * area / (std::sqrt(3.) * N));
+  const double floor_L = std::max(perimeters / (200. * N), 1e-3 * uniform_L);
+  R.set_operation_budget(100 * (rf.triangles.size() + static_cast<std::size_t>(N)));
+  if (!(area > 0) || !(uniform_L < std::numeric_limits<double>::infinity())) {
+    // nothing to adapt to (all faces degenerate): uniform
+    res.target_edge_length = std::max(uniform_L, perimeters / (200. * N));
+    if (!std::isfinite(res.target_edge_length)) res.target_edge_length = 0;
+    R.set_uniform(res.target_edge_length);
+    return R.run(std::max(o.iterations, 1), o.project, vis);
+  }
+  auto lmin_for = [&](double eps) {
+    return std::max(o.has_min_edge_length ? o.min_edge_length / o.density : eps, floor_L);
+  };
+  // the tolerance by bisection in log space on the predicted count
+  rf.prepare_curvature();
+  double lo = 1e-9 * uniform_L, hi = 10. * uniform_L;
+  for (int i = 0; i < 40; ++i) {
+    const double mid = std::sqrt(lo * hi), lmin = lmin_for(mid);
+    rf.sizing_from_curvature(mid, lmin, std::max(lmax, lmin), o.gamma);
+    (rf.predicted_faces() > N ? lo : hi) = mid;
+  }
+  const double eps = hi, lmin = lmin_for(eps);
+  R.set_adaptive(eps, lmin, std::max(lmax, lmin), o.gamma);
+  res.tolerance = eps;
+  // the tolerance found predicts the count, not the deviation: only the
+  // outliers (3 x eps, refined to 2 x eps) are refined, the count corrected after
+  Status st = run_with_error_control(R, std::max(o.iterations, 4), o.project, 3. * eps, 2. * eps, lmin, vis);
+  bool corrected = false;
+  for (int round = 0; round < 8 && st == Status::ok; ++round) {
+    const double F = static_cast<double>(internal::face_count(tm) - outside);
+    if (std::abs(F - N) <= 0.015 * N) break;
+    R.scale_sizing(std::sqrt(F / N), std::min(lmin, floor_L), std::max(lmax, lmin));
+    st = R.run(3, o.project, vis, false);
+    corrected = true;
+  }
+  if (corrected && st == Status::ok) R.finish(o.project);
+  res.target_edge_length = R.mean_sizing();
+  return st;
 }
 
 /// remeshes `tm` (or the faces of `part` when not null) on checked input;
@@ -133,38 +213,11 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
       const auto& s = R.reference().sizing;
       res.min_target = s.empty() ? 0 : *std::min_element(s.begin(), s.end());
       res.max_target = s.empty() ? 0 : *std::max_element(s.begin(), s.end());
-      st = R.run(o.iterations, o.project, vis);
+      // deviations over the tolerance are refined to 0.7 x the tolerance
+      st = run_with_error_control(R, o.iterations, o.project, value, 0.7 * value, lmin / o.density, vis);
     } else {
-      // face count: L from the area (equilateral triangles), then corrected
-      double area = 0;
-      const auto& rf = R.reference();
-      for (const auto& t : rf.triangles)
-        area += 0.5 * norm(triangle_normal(rf.points[t[0]], rf.points[t[1]], rf.points[t[2]]));
-      const double N = value;
-      res.target_faces = static_cast<std::size_t>(N);
-      double L = std::sqrt(4. * area / (std::sqrt(3.) * N));
-      // a few very long, thin triangles have little area but would be split
-      // into edge length / L pieces (out of memory): keep the splits to ~100 N
-      double perimeters = 0;
-      for (const auto& t : rf.triangles)
-        for (int k = 0; k < 3; ++k)
-          perimeters += norm(rf.points[t[(k + 1) % 3]] - rf.points[t[k]]);
-      L = std::max(L, perimeters / (200. * N));
-      const std::size_t outside = whole ? 0 : res.faces_before - rf.triangles.size();
-      // Surfaces far thinner than L in one direction (a stray far vertex) make
-      // splits and collapses undo each other without converging: a budget of
-      // ~100 operations per input and output face bounds the time.
-      R.set_operation_budget(100 * (rf.triangles.size() + static_cast<std::size_t>(N)));
-      R.set_uniform(L);
-      st = R.run(std::max(o.iterations, 1), o.project, vis);
-      for (int round = 0; round < 6 && st == Status::ok; ++round) {
-        double F = static_cast<double>(internal::face_count(tm) - outside);
-        if (std::abs(F - N) <= 0.04 * N) break;
-        L *= std::sqrt(F / N);
-        R.set_uniform(L);
-        st = R.run(3, o.project, vis);
-      }
-      res.target_edge_length = L;
+      st = remesh_to_count(R, o, value, whole ? 0 : res.faces_before - R.reference().triangles.size(),
+                           tm, vis, res);
     }
     if (st == Status::ok || st == Status::cancelled || st == Status::partial) R.write_back();
     if (o.has_ecm)

@@ -268,20 +268,16 @@ public:
     return p;
   }
 
-  /// curvature-based sizing (thesis 3.7): per point mean curvature H from the
-  /// cotangent Laplacian and Gaussian curvature K from the angle deficit, both
-  /// over the barycentric area; kappa = |H| + sqrt(max(H^2 - K, 0)) (largest
-  /// absolute principal curvature), smoothed once over the one-ring (scan
-  /// noise), rescaled by gamma, then L = sqrt(6 eps / kappa - 3 eps^2) clamped
-  /// to [lmin, lmax]. Points on lines take the mean of their non-line neighbours.
-  void compute_adaptive_sizing(double eps, double lmin, double lmax, double gamma)
+  /// per point, the largest absolute principal curvature: the cotangent
+  /// mean curvature H and the angle-deficit Gaussian curvature K, both over
+  /// the barycentric area; kappa = |H| + sqrt(max(H^2 - K, 0)).
+  std::vector<double> estimate_curvature() const
   {
     const std::size_t n = points.size();
     std::vector<Vec3> lap(n);
     std::vector<double> area(n, 0.), angle(n, 0.);
     for (const auto& t : triangles) {
-      const Vec3* p[3] = {&points[t[0]], &points[t[1]], &points[t[2]]};
-      double a2 = norm(triangle_normal(*p[0], *p[1], *p[2]));
+      double a2 = norm(triangle_normal(points[t[0]], points[t[1]], points[t[2]]));
       if (!(a2 > 0)) continue;
       for (int k = 0; k < 3; ++k) {
         int i = t[k], j = t[(k + 1) % 3], l = t[(k + 2) % 3];
@@ -303,6 +299,26 @@ public:
       double K = (two_pi - angle[i]) / area[i];
       kappa[i] = std::abs(H) + std::sqrt(std::max(H * H - K, 0.));
     }
+    return kappa;
+  }
+
+  /// curvature-based sizing (thesis 3.7): kappa per point (estimate_curvature),
+  /// smoothed over the interior one-ring, rescaled by gamma, then
+  /// L = sqrt(6 eps / kappa - 3 eps^2) clamped to [lmin, lmax]. Points on
+  /// lines take the mean of their non-line neighbours. The error control of
+  /// the remesher (Remesher::refine_deviating_faces) lowers it where the
+  /// estimate was too optimistic.
+  void compute_adaptive_sizing(double eps, double lmin, double lmax, double gamma)
+  {
+    if (curvature_.size() != points.size()) prepare_curvature();
+    sizing_from_curvature(eps, lmin, lmax, gamma);
+  }
+
+  /// the smoothed curvature per point (once per reference surface)
+  void prepare_curvature()
+  {
+    const std::size_t n = points.size();
+    std::vector<double> kappa = estimate_curvature();
     // smoothing passes over the interior one-ring (line points excluded):
     // the estimate is noisy on scans (thesis 5, Vorsatz et al. 2001)
     std::vector<double> sum(n, 0.), cnt(n, 0.);
@@ -318,6 +334,15 @@ public:
       for (std::size_t i = 0; i < n; ++i)
         if (!on_line[i] && cnt[i] > 0) kappa[i] = 0.5 * kappa[i] + 0.5 * sum[i] / cnt[i];
     }
+    curvature_ = std::move(kappa);
+  }
+
+  /// sizing from the prepared curvature for tolerance `eps`
+  void sizing_from_curvature(double eps, double lmin, double lmax, double gamma)
+  {
+    const std::size_t n = points.size();
+    const std::vector<double>& kappa = curvature_;
+    std::vector<double> sum(n, 0.), cnt(n, 0.);
     double kmax = 0;
     for (std::size_t i = 0; i < n; ++i)
       if (!on_line[i] && std::isfinite(kappa[i])) kmax = std::max(kmax, kappa[i]);
@@ -347,6 +372,58 @@ public:
     for (std::size_t i = 0; i < n; ++i)
       if (on_line[i]) sizing[i] = cnt[i] > 0 ? sum[i] / cnt[i] : lmax;
   }
+
+  /// faces of an equilateral mesh following the sizing (area over the area
+  /// of the equilateral triangle of the mean corner length, per triangle)
+  double predicted_faces() const
+  {
+    double f = 0;
+    for (const auto& t : triangles) {
+      const double a = 0.5 * norm(triangle_normal(points[t[0]], points[t[1]], points[t[2]]));
+      const double L = (sizing[t[0]] + sizing[t[1]] + sizing[t[2]]) / 3.;
+      if (a > 0 && L > 0) f += a / (0.25 * std::sqrt(3.) * L * L);
+    }
+    return f;
+  }
+
+  /// lowers the sizing to at most `L` at the points within `radius` of `centre`,
+  /// found by a walk over the triangles from triangle `hint` (bounded: a few
+  /// thousand triangles); returns the points lowered.
+  std::size_t lower_sizing_near(const Vec3& centre, double radius, int hint, double L)
+  {
+    if (hint < 0 || hint >= int(triangles.size())) return 0;
+    if (visit_stamp_.size() != triangles.size()) visit_stamp_.assign(triangles.size(), 0u);
+    if (++stamp_ == 0) {
+      std::fill(visit_stamp_.begin(), visit_stamp_.end(), 0u);
+      stamp_ = 1;
+    }
+    const double r2 = radius * radius;
+    std::size_t lowered = 0;
+    walk_.clear();
+    walk_.push_back(hint);
+    visit_stamp_[hint] = stamp_;
+    for (std::size_t w = 0; w < walk_.size() && w < 4096; ++w) {
+      const auto& t = triangles[walk_[w]];
+      for (int k = 0; k < 3; ++k) {
+        const int p = t[k];
+        // the corners of the start triangle always: the sizing there is read at the face
+        if (w > 0 && squared_norm(points[p] - centre) > r2) continue;
+        if (sizing[p] > L) { sizing[p] = L; ++lowered; }
+        for (int j = star_begin[p]; j < star_begin[p + 1]; ++j)
+          if (visit_stamp_[star[j]] != stamp_) {
+            visit_stamp_[star[j]] = stamp_;
+            walk_.push_back(star[j]);
+          }
+      }
+    }
+    return lowered;
+  }
+
+private:
+  std::vector<double> curvature_;
+  std::vector<unsigned> visit_stamp_;
+  std::vector<int> walk_;
+  unsigned stamp_ = 0;
 };
 
 } // namespace remesh

@@ -123,6 +123,7 @@ public:
   {}
 
   const Reference_surface& reference() const { return ref; }
+  Reference_surface& reference() { return ref; }
   void set_relax_lines(bool b) { relax_lines_ = b; }
   /// caps the splits plus collapses of all runs; `run` returns `partial` once spent
   void set_operation_budget(std::size_t n) { op_budget_ = n; }
@@ -255,6 +256,18 @@ public:
       put(size_, v, r >= 0 ? ref.sizing[r] : lmax);
     }
   }
+
+  /// multiplies the sizing field (the reference's and the vertices') by `f`,
+  /// clamped to [lmin, lmax]
+  void scale_sizing(double f, double lmin, double lmax)
+  {
+    for (double& L : ref.sizing) L = std::clamp(L * f, lmin, lmax);
+    for (vertex_descriptor v : vertices(tm_)) put(size_, v, std::clamp(get(size_, v) * f, lmin, lmax));
+  }
+
+  /// the min-angle optimisation of the last iteration, for runs made with
+  /// `last_run` false
+  void finish(bool project) { optimize_bad_vertices(30., project, 4); }
 
   // ---------------------------------------------------------------- helpers
   double tsize(vertex_descriptor a, vertex_descriptor b) const
@@ -918,11 +931,72 @@ public:
       if (!undone[i]) ++counters.relaxed;
   }
 
+  // ------------------------------------------------------- error control
+  // The sizing field predicts the deviation from the curvature; where the
+  // estimate is off (a peak smoothed away, a flat-faceted input, a thin part)
+  // the faces deviate more. Their samples (centroid, edge midpoints, as the
+  // Hausdorff distance is measured) are projected onto the input, and where
+  // one lies farther than `limit` the sizing around the face is lowered so
+  // that the deviation, quadratic in the edge length, comes down to `goal`.
+
+  /// largest distance of the samples of the face of `h` to the input surface
+  double face_deviation(halfedge_descriptor h) const
+  {
+    const vertex_descriptor v3[3] = {source(h, tm_), target(h, tm_), target(next(h, tm_), tm_)};
+    const Vec3 p[3] = {get(pos_, v3[0]), get(pos_, v3[1]), get(pos_, v3[2])};
+    int hint = -1;
+    for (vertex_descriptor v : v3)
+      if (hint < 0 && get(kind_, v) == V_FREE) hint = get(thint_, v);
+    for (vertex_descriptor v : v3)
+      if (hint < 0) hint = get(thint_, v);
+    const double reach =
+        std::sqrt(std::max({squared_norm(p[1] - p[0]), squared_norm(p[2] - p[1]), squared_norm(p[0] - p[2])}));
+    const Vec3 samples[4] = {(1. / 3.) * (p[0] + p[1] + p[2]), 0.5 * (p[0] + p[1]),
+                             0.5 * (p[1] + p[2]), 0.5 * (p[2] + p[0])};
+    double worst = 0;
+    for (const Vec3& q : samples) {
+      if (!is_finite(q)) continue;
+      double s = 0;
+      int h1 = hint;
+      const Vec3 c = ref.project_surface(q, s, h1, reach);
+      worst = std::max(worst, squared_norm(c - q));
+    }
+    return std::sqrt(worst);
+  }
+
+  /// lowers the sizing around faces deviating more than `limit` (see above);
+  /// returns the number of such faces.
+  std::size_t refine_deviating_faces(double limit, double goal, double lmin)
+  {
+    if (!ref.has_surface()) return 0;
+    std::vector<halfedge_descriptor> fs;
+    for (face_descriptor f : faces(tm_)) fs.push_back(halfedge(f, tm_));
+    std::vector<double> dev(fs.size(), 0.);
+    for_each_index(fs.size(), [&](std::size_t i) { dev[i] = face_deviation(fs[i]); });
+    std::size_t bad = 0;
+    for (std::size_t i = 0; i < fs.size(); ++i) {
+      if (!(dev[i] > limit)) continue;
+      ++bad;
+      const halfedge_descriptor h = fs[i];
+      const vertex_descriptor v3[3] = {source(h, tm_), target(h, tm_), target(next(h, tm_), tm_)};
+      const Vec3 p[3] = {get(pos_, v3[0]), get(pos_, v3[1]), get(pos_, v3[2])};
+      const double longest = std::sqrt(
+          std::max({squared_norm(p[1] - p[0]), squared_norm(p[2] - p[1]), squared_norm(p[0] - p[2])}));
+      const double L = std::max(lmin, longest * std::sqrt(goal / dev[i]));
+      const Vec3 c = (1. / 3.) * (p[0] + p[1] + p[2]);
+      for (vertex_descriptor v : v3) {
+        if (get(size_, v) > L) put(size_, v, L);
+        ref.lower_sizing_near(c, longest, get(thint_, v), L);
+      }
+    }
+    return bad;
+  }
+
   /// runs `iterations` rounds; `stop()` is polled between phases. Returns
   /// `partial` when the operation budget ran out (the mesh stays valid but
   /// has not reached its target), `cancelled` on a stop request.
   template <typename Visitor>
-  Status run(int iterations, bool project, Visitor& vis)
+  Status run(int iterations, bool project, Visitor& vis, bool last_run = true)
   {
     for (int it = 0; it < iterations; ++it) {
       if (vis.stop_requested()) return Status::cancelled;
@@ -961,7 +1035,7 @@ public:
       vis.start_phase("cleanup");
       fix_bad_triangles(bad_angle_);
       // the cleanup's flips and collapses come after the last relaxation
-      if (it + 1 == iterations) optimize_bad_vertices(30., project, 4);
+      if (last_run && it + 1 == iterations) optimize_bad_vertices(30., project, 4);
       vis.end_phase("cleanup");
 #ifdef MREPAIR_REMESH_DEBUG
       debug_report(it, "cleanup");
