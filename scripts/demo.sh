@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The main job: installs what is missing, builds the mrepair program, repairs
-# the bundled sample scan and prints the inspection report before and after.
+# the bundled sample scan and prints the summary of the repair: faces, vertices
+# and each defect count before -> after (the full report goes to the JSON file).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh

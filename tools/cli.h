@@ -99,15 +99,27 @@ public:
   }
 };
 
+/// how much a command prints: nothing but errors, a summary of about ten
+/// lines (the default), or the full report and a line per phase.
+enum class Verbosity { quiet, summary, verbose };
+
+/// `--quiet` (it wins), `--verbose`, else the summary.
+inline Verbosity verbosity(const Arguments& a)
+{
+  if (a.has("quiet")) return Verbosity::quiet;
+  return a.has("verbose") ? Verbosity::verbose : Verbosity::summary;
+}
+
 /// parses `argv[first..argc)` against `options` (plus the common `--report`,
-/// `--json`, `--quiet`, `--help`); requires between `min_positional` and
-/// `max_positional` positional arguments.
+/// `--json`, `--quiet`, `--verbose`, `--help`); requires between
+/// `min_positional` and `max_positional` positional arguments.
 inline Arguments parse(int argc, char** argv, int first, std::vector<Option> options,
                        std::size_t min_positional, std::size_t max_positional)
 {
   options.push_back({"report", true, "write the report as JSON to FILE"});
-  options.push_back({"json", false, "print the report as JSON instead of a table"});
-  options.push_back({"quiet", false, "print no progress"});
+  options.push_back({"json", false, "print the report as JSON instead of a summary"});
+  options.push_back({"quiet", false, "print nothing but errors"});
+  options.push_back({"verbose", false, "print the full report and a line per phase"});
   options.push_back({"help", false, "print this help"});
   Arguments a;
   for (int i = first; i < argc; ++i) {
@@ -140,6 +152,7 @@ inline Arguments parse(int argc, char** argv, int first, std::vector<Option> opt
     }
   }
   if (a.has("help")) return a;
+  if (a.has("ascii") && a.has("binary")) throw Usage_error("--ascii and --binary exclude each other");
   if (a.positional.size() < min_positional)
     throw Usage_error("missing argument (see --help)");
   if (a.positional.size() > max_positional)
@@ -214,16 +227,19 @@ inline void print_help(const Command& c, const std::vector<Option>& options)
     std::cout << "  --" << o.name << (o.takes_value ? " VALUE" : "") << "\n      " << o.help
               << "\n";
   std::cout << "  --report FILE\n      write the report as JSON to FILE\n"
-               "  --json\n      print the report as JSON\n  --quiet\n      print no progress\n";
+               "  --json\n      print the report as JSON instead of the summary\n"
+               "  --verbose\n      print the full report (a table) and a line per phase\n"
+               "  --quiet\n      print nothing but errors\n";
 }
 
-/// prints `report` (table or JSON) and writes it to `--report FILE` when given.
-/// Returns false when the file cannot be written.
+/// prints `report` (JSON with --json, a table with --verbose; the default
+/// summary is the command's, summary.h) and writes it to `--report FILE`
+/// when given. Returns false when the file cannot be written.
 inline bool emit_report(const Arguments& a, const Report& report)
 {
   if (a.has("json"))
     std::cout << report.to_json() << "\n";
-  else
+  else if (verbosity(a) == Verbosity::verbose)
     std::cout << report.to_text();
   if (a.has("report")) {
     std::ofstream out(a.get("report"));
@@ -246,8 +262,9 @@ inline int fail(const std::string& reason)
   return 1;
 }
 
-/// visitor that prints one line per finished phase with its time on stderr,
-/// and a percentage while a phase runs when stderr is a terminal.
+/// visitor that prints one line per finished phase with its time on stderr
+/// (--verbose), and a percentage while a phase runs when stderr is a
+/// terminal (not with --quiet or --json), erased when the phase ends.
 class Progress_printer : public Default_visitor
 {
   using Clock = std::chrono::steady_clock;
@@ -257,15 +274,25 @@ class Progress_printer : public Default_visitor
     Clock::time_point start;
   };
   std::vector<Open> open_;
-  bool enabled_;
+  bool phases_;   // a line per finished phase
+  bool percent_;  // the running percentage
   bool tty_;
+  bool line_shown_ = false;  // a percentage is on the terminal's last line
   int last_percent_ = -1;
   std::size_t release_above_ = 0;
 
 public:
-  explicit Progress_printer(bool enabled = true)
-    : enabled_(enabled), tty_(isatty(fileno(stderr)) != 0)
+  explicit Progress_printer(const Arguments& a)
+    : phases_(verbosity(a) == Verbosity::verbose),
+      percent_(verbosity(a) != Verbosity::quiet && !a.has("json")),
+      tty_(isatty(fileno(stderr)) != 0)
   {}
+  ~Progress_printer() { erase_percentage(); }
+  void erase_percentage()
+  {
+    if (line_shown_) std::cerr << "\r\033[K" << std::flush;
+    line_shown_ = false;
+  }
   void start_phase(const char* name)
   {
     open_.push_back({name, Clock::now()});
@@ -281,19 +308,20 @@ public:
     double s = std::chrono::duration<double>(Clock::now() - open_.back().start).count();
     open_.pop_back();
     if (release_above_ > 0) release_freed_memory_above(release_above_);
-    if (enabled_) {
-      if (tty_) std::cerr << "\r\033[K";
+    erase_percentage();
+    last_percent_ = -1;
+    if (phases_)
       std::cerr << "  " << std::string(2 * open_.size(), ' ') << name << ": "
                 << std::to_string(s).substr(0, 6) << " s\n";
-    }
   }
   void progress(double f)
   {
-    if (!enabled_ || !tty_ || open_.empty()) return;
+    if (!(phases_ || percent_) || !tty_ || open_.empty()) return;
     int p = static_cast<int>(f * 100.0);
     if (p == last_percent_) return;
     last_percent_ = p;
     std::cerr << "\r\033[K  " << open_.back().name << " " << p << "%" << std::flush;
+    line_shown_ = true;
   }
 };
 

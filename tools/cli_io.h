@@ -12,6 +12,8 @@
 #ifndef MREPAIR_TOOLS_CLI_IO_H
 #define MREPAIR_TOOLS_CLI_IO_H
 
+#include "cli.h"
+
 #include <mrepair/internal/studio/payload.h>
 #include <mrepair/io.h>
 #include <mrepair/locate_defects.h>
@@ -107,6 +109,17 @@ bool save_mesh(const std::string& path, const PolygonMesh& mesh, bool binary, Re
   if (r.status == Status::ok) return true;
   error = internal_io::one_line(r, path);
   return false;
+}
+
+/// whether to write `output` in binary: as `--binary` or `--ascii` say when
+/// given, else keeping the encoding of the file read as `input`
+/// (`keeps_encoding_binary`: binary in, binary out for the same format;
+/// binary where the output's format has it across formats).
+inline bool write_binary(const Arguments& a, const Io_result& input, const std::string& output)
+{
+  if (a.has("binary")) return true;
+  if (a.has("ascii")) return false;
+  return keeps_encoding_binary(input, output);
 }
 
 /// triangulates the faces with more than three sides (CAD exports carry quads

@@ -3,6 +3,7 @@
 // triangle mesh, one progress line per step.
 #include "cli.h"
 #include "cli_io.h"
+#include "summary.h"
 
 #include <mrepair/clean_scan_mesh.h>
 #include <mrepair/input_profile.h>
@@ -11,6 +12,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/iterator.h>
 
 #include <optional>
 #include <sstream>
@@ -38,8 +40,22 @@ const std::vector<cli::Option>& clean_options()
                      "relax_spikes, remove_unrelaxable_spikes, clean_boundaries, "
                      "remove_small_components, fill_small_holes, fix_near_degenerate_faces, "
                      "relax_spikes_again, ensure_valid_mesh"},
-      {"binary", false, "write a binary file (PLY, STL)"}};
+      {"binary", false, "write a binary file (PLY, STL; default: the input's encoding for its own format, binary for another)"},
+      {"ascii", false, "write an ASCII file"}};
   return o;
+}
+
+// the border cycles of `m`, for the summary
+std::size_t count_boundary_loops(const Mesh& m)
+{
+  std::vector<char> seen(m.num_halfedges(), 0);
+  std::size_t loops = 0;
+  for (Mesh::Halfedge_index h : halfedges(m)) {
+    if (!is_border(h, m) || seen[h.idx()]) continue;
+    ++loops;
+    for (Mesh::Halfedge_index g : CGAL::halfedges_around_face(h, m)) seen[g.idx()] = 1;
+  }
+  return loops;
 }
 
 unsigned parse_steps(const std::string& list)
@@ -64,6 +80,7 @@ int run_clean(int argc, char** argv)
     cli::print_help(self, clean_options());
     return 0;
   }
+  cli::Summary summary("clean");
   mrepair::Input_profile profile = mrepair::Input_profile::scan;
   if (a.has("profile") && !mrepair::parse_input_profile(a.get("profile"), profile))
     throw cli::Usage_error("--profile must be scan, cad or auto");
@@ -79,8 +96,8 @@ int run_clean(int argc, char** argv)
   const std::optional<std::size_t> max_hole = a.optional_count("max-hole", 0),
                                    min_comp = a.optional_count("min-component", 0),
                                    iterations = a.optional_count("iterations", 0);
-  const bool quiet = a.has("quiet") || a.has("json");
-  cli::Progress_printer printer(!quiet);
+  const bool verbose = cli::verbosity(a) == cli::Verbosity::verbose;
+  cli::Progress_printer printer(a);
   mrepair::Report report;
 
   // Read a soup (NaN points are accepted: the pipeline removes them), then
@@ -98,13 +115,15 @@ int run_clean(int argc, char** argv)
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, mesh);
   points.clear();
   polygons.clear();
-  if (!quiet) std::cerr << "  read: " << std::to_string(t_read).substr(0, 6) << " s\n";
+  if (verbose) std::cerr << "  read: " << std::to_string(t_read).substr(0, 6) << " s\n";
   std::string error;
   if (!cli::triangulate_polygons(mesh, report, error)) {
     cli::emit_report(a, report);
     return cli::fail(a.positional[0] + ": " + error);
   }
 
+  // the boundary of the input, for the summary (a pass over the halfedges)
+  const std::size_t boundary_loops_before = count_boundary_loops(mesh);
   auto run = [&](const auto& steps_np) {
     return mrepair::clean_scan_mesh(
         mesh, MP::input_profile(
@@ -135,12 +154,29 @@ int run_clean(int argc, char** argv)
   }
   mrepair::Io_result out;
   double t_write =
-      cli::timed([&] { out = mrepair::write_polygon_mesh(a.positional[1], mesh, a.has("binary")); });
-  if (!quiet) std::cerr << "  write: " << std::to_string(t_write).substr(0, 6) << " s\n";
+      cli::timed([&] { out = mrepair::write_polygon_mesh(a.positional[1], mesh, cli::write_binary(a, in, a.positional[1])); });
+  if (verbose) std::cerr << "  write: " << std::to_string(t_write).substr(0, 6) << " s\n";
   out.to_report(report.section("output"));
   if (!cli::emit_report(a, report)) return 1;
   if (out.status != mrepair::Status::ok)
     return cli::fail(out.message.empty() ? a.positional[1] + ": cannot write" : out.message);
+  summary.set_status(r.status, r.message);
+  summary.add_profile(std::string(mrepair::to_string(r.profile.profile)) + (r.profile.chosen_by_user ? " (chosen)" : ""));
+  summary.add_sizes(r.faces_before, r.faces_after, r.vertices_before, r.vertices_after);
+  // what the steps did (the cleaning counts no defects before and after)
+  const std::size_t boundary_loops_after = count_boundary_loops(mesh);
+  summary.add_change("boundary_loops", boundary_loops_before, boundary_loops_after);
+  if (r.holes.holes_filled) summary.add_count("holes_filled", r.holes.holes_filled);
+  if (r.components.components_removed) summary.add_count("small_components_removed", r.components.components_removed);
+  for (std::size_t i = 0; i < mrepair::number_of_clean_steps; ++i) {
+    const std::string step = mrepair::clean_step_name(i);
+    if (step == "remove_small_components" || step == "fill_small_holes" || r.steps[i].changes == 0) continue;
+    summary.add_count(step + "_changes", r.steps[i].changes);
+  }
+  summary.add_closed(boundary_loops_after == 0 && r.faces_after > 0);
+  summary.add_output(a.positional[1], out);
+  summary.add_report(a);
+  cli::print_summary(a, summary);
   return cli::exit_code(r.status);
 }
 

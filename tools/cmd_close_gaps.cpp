@@ -10,6 +10,7 @@
 // forward) to the point asked for.
 #include "cli.h"
 #include "cli_io.h"
+#include "summary.h"
 
 #include <mrepair/close_gaps.h>
 #include <mrepair/io.h>
@@ -59,7 +60,8 @@ const std::vector<Option>& options()
        "close gaps only at the vertices of the faces listed in FILE (0-based indices of the "
        "triangulated input, separated by spaces or newlines, '#' starts a comment)"},
       {"keep-pinched", false, "do not split vertices left with several fans"},
-      {"binary", false, "write binary output (PLY/STL)"}};
+      {"binary", false, "write a binary file (PLY, STL; default: the input's encoding for its own format, binary for another)"},
+      {"ascii", false, "write an ASCII file"}};
   return o;
 }
 
@@ -171,6 +173,8 @@ int run(int argc, char** argv)
     mrepair::cli::print_help(command(), options());
     return 0;
   }
+  mrepair::cli::Summary summary("close-gaps");
+  const bool verbose = mrepair::cli::verbosity(a) == mrepair::cli::Verbosity::verbose;
   const bool load = a.has("load-sequence");
   if (load && (a.has("tolerance") || a.has("relative") || a.has("lambda")))
     throw Usage_error("--load-sequence takes the tolerance and lambda from the file: drop --tolerance, "
@@ -218,15 +222,16 @@ int run(int argc, char** argv)
   Mesh mesh;
   mrepair::Io_result io;
   const double read_seconds = mrepair::cli::timed([&] { io = mrepair::read_polygon_mesh(a.positional[0], mesh); });
-  if (!a.has("quiet")) std::cerr << "  read: " << std::to_string(read_seconds).substr(0, 6) << " s\n";
+  if (verbose) std::cerr << "  read: " << std::to_string(read_seconds).substr(0, 6) << " s\n";
   io.to_report(report.section("input"));
   report.section("input").add("seconds", read_seconds);
   if (io.status == mrepair::Status::non_manifold_input || io.status == mrepair::Status::invalid_index ||
       io.status == mrepair::Status::non_finite_input) {
     // not a valid polygon mesh: make it one first (what `mrepair soup` does)
-    std::cerr << "mrepair: " << a.positional[0]
+    if (!a.has("quiet"))
+      std::cerr << "mrepair: " << a.positional[0]
               << " is not a valid polygon mesh; repairing it as a soup first (see `mrepair soup`)\n";
-    if (!face_list.empty())
+    if (!face_list.empty() && !a.has("quiet"))
       std::cerr << "mrepair: --faces indices refer to the faces of the repaired mesh\n";
     std::vector<K::Point_3> points;
     std::vector<std::vector<std::size_t>> polygons;
@@ -279,7 +284,7 @@ int run(int argc, char** argv)
     e.to_report(report.section("tolerance_estimate"));
     report.section("tolerance_estimate").add("seconds", seconds);
     tol = e.tolerance;
-    if (!a.has("quiet"))
+    if (verbose)
       std::cerr << "  tolerance (estimated): " << tol << " from " << e.candidates << " candidates\n";
     if (a.has("to-distance") && to_distance > tol)
       throw Usage_error("--to-distance must not exceed the estimated tolerance (" + std::to_string(tol) + ")");
@@ -294,7 +299,8 @@ int run(int argc, char** argv)
                   MP::gap_vertex_selection(region,
                   MP::gap_fingerprint_input(fingerprint)))));
 
-  mrepair::cli::Progress_printer printer(!a.has("quiet"));
+  mrepair::cli::Progress_printer printer(a);
+  const std::size_t faces_in = mesh.number_of_faces(), vertices_in = mesh.number_of_vertices();
   mrepair::Gap_closing_result r;
   mrepair::Report& rr = report.section("close_gaps");
   if (!sequence) {
@@ -390,12 +396,25 @@ int run(int argc, char** argv)
   // the writer numbers the elements left after the contractions' removals:
   // no collect_garbage() (a sequential pass over every property array)
   const double write_seconds =
-      mrepair::cli::timed([&] { out = mrepair::write_polygon_mesh(a.positional[1], mesh, a.has("binary")); });
-  if (!a.has("quiet")) std::cerr << "  write: " << std::to_string(write_seconds).substr(0, 6) << " s\n";
+      mrepair::cli::timed([&] {
+        out = mrepair::write_polygon_mesh(a.positional[1], mesh, mrepair::cli::write_binary(a, io, a.positional[1]));
+      });
+  if (verbose) std::cerr << "  write: " << std::to_string(write_seconds).substr(0, 6) << " s\n";
   out.to_report(report.section("output"));
   report.section("output").add("seconds", write_seconds);
   if (!mrepair::succeeded(out.status)) return mrepair::cli::fail(out.message);
   if (!mrepair::cli::emit_report(a, report)) return 1;
+  summary.set_status(r.status, r.message);
+  summary.add_sizes(faces_in, mesh.number_of_faces(), vertices_in, mesh.number_of_vertices());
+  summary.add_change("boundary_edges", r.boundary_edges_before, r.boundary_edges_after);
+  summary.add_change("boundary_loops", r.boundary_loops_before, r.boundary_loops_after);
+  if (r.pinched_vertices) summary.add_count("pinched_vertices", r.pinched_vertices);
+  summary.add_line("contractions", std::to_string(r.operations) + " within " + mrepair::cli::summary_number(r.tolerance) +
+                                       (r.tolerance_estimated ? " (estimated)" : ""));
+  summary.add_closed(r.boundary_edges_after == 0 && mesh.number_of_faces() > 0);
+  summary.add_output(a.positional[1], out);
+  summary.add_report(a);
+  mrepair::cli::print_summary(a, summary);
   return mrepair::cli::exit_code(r.status);
 }
 

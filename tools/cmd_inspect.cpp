@@ -5,6 +5,7 @@
 // halfedge cycles).
 #include "cli.h"
 #include "cli_io.h"
+#include "summary.h"
 
 #include <mrepair/compare_to_reference.h>
 #include <mrepair/definitions.h>
@@ -61,6 +62,7 @@ int run(int argc, char** argv)
     cli::print_help(command, options);
     return 0;
   }
+  cli::Summary summary("inspect");
   const double spike = args.get_double("spike-angle", mrepair::defaults::spike_angle);
   if (spike < 0 || spike > 180) throw cli::Usage_error("--spike-angle expects degrees in [0, 180]");
   const std::size_t hole = static_cast<std::size_t>(non_negative(args, "small-hole", static_cast<long long>(mrepair::defaults::max_hole_vertices)));
@@ -82,7 +84,7 @@ int run(int argc, char** argv)
     }
   }
 
-  cli::Progress_printer printer(!args.has("quiet") && !args.has("json"));
+  cli::Progress_printer printer(args);
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
   mrepair::Io_result io;
@@ -131,6 +133,7 @@ int run(int argc, char** argv)
   }
   // --reference: how much of the repair's input this output still holds
   mrepair::Status reference_status = mrepair::Status::ok;
+  std::string reference_summary;  // the summary's line
   if (args.has("reference")) {
     const std::optional<double> reference_tolerance = args.optional_double("reference-tolerance");
     if (reference_tolerance && *reference_tolerance < 0)
@@ -159,6 +162,9 @@ int run(int argc, char** argv)
     printer.end_phase("compare with reference");
     c.to_report(report.section("reference"));
     reference_status = c.status;
+    reference_summary = std::to_string(c.vertices_lost) + " of " + std::to_string(c.vertices) +
+                        " input vertices lost, farthest " + std::to_string(100. * c.max_distance_relative) +
+                        "% of the diagonal away";
   }
   if (!cli::emit_report(args, report)) return 1;
   if (args.has("html")) {
@@ -180,6 +186,19 @@ int run(int argc, char** argv)
         cli::write_studio_report(html_template, args.get("html"), title, view, cli::Studio_view(), report, settings);
     if (!error.empty()) return cli::fail(error);
   }
+  // the summary: what the file holds and each defect found, with its count
+  summary.set_status(soup.status, soup.message);
+  summary.add_line("input", cli::describe_file(input, io) + (is_mesh ? ", a polygon mesh" : ", a polygon soup"));
+  summary.add_count("faces", soup.faces);
+  summary.add_count("vertices", soup.vertices);
+  summary.add_count("connected_components", soup.connected_components);
+  summary.add_defects(soup);
+  summary.add_closed(soup.closed);
+  summary.add_intersection_free(soup);
+  if (!reference_summary.empty()) summary.add_line("reference", reference_summary);
+  summary.add_report(args);
+  if (args.has("html")) summary.add_line("html", args.get("html"));
+  cli::print_summary(args, summary);
   return soup.status == mrepair::Status::invalid_parameter ||
                  reference_status == mrepair::Status::invalid_parameter
              ? 1

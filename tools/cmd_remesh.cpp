@@ -5,12 +5,14 @@
 
 #include <optional>
 #include "cli_io.h"
+#include "summary.h"
 
 #include <mrepair/adaptive_remesh.h>
 #include <mrepair/io.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
 
 namespace {
 
@@ -27,6 +29,8 @@ const std::vector<cli::Option> options = {
     {"max-edge-length", true, "adaptive: largest target length (default bbox diagonal / 20)"},
     {"protect-features", false, "features and boundary are neither split nor collapsed"},
     {"sequential", false, "do not use threads"},
+    {"binary", false, "write a binary file (PLY, STL; default: the input's encoding for its own format, binary for another)"},
+    {"ascii", false, "write an ASCII file"},
 };
 
 int run(int argc, char** argv)
@@ -39,6 +43,7 @@ int run(int argc, char** argv)
     cli::print_help(self, options);
     return 0;
   }
+  cli::Summary summary("remesh");
   int modes = a.has("edge-length") + a.has("tolerance") + a.has("faces");
   if (modes != 1) throw cli::Usage_error("give exactly one of --edge-length, --tolerance, --faces");
   // given or absent: the defaults are the library's (definitions.h)
@@ -64,7 +69,8 @@ int run(int argc, char** argv)
   if (!cli::triangulate_polygons(mesh, report, error))
     return cli::fail(a.positional[0] + ": " + error);
 
-  cli::Progress_printer printer(!a.has("quiet"));
+  cli::Progress_printer printer(a);
+  const std::size_t vertices_in = mesh.number_of_vertices();
   auto np = mrepair::parameters::remesh_feature_angle(feature_angle)
                 .number_of_iterations(iterations)
                 .protect_constraints(a.has("protect-features"))
@@ -104,10 +110,19 @@ int run(int argc, char** argv)
     cli::emit_report(a, report);
     return cli::fail(std::string("remesh: ") + mrepair::to_string(r.status) + ": " + r.message);
   }
-  mrepair::Io_result w = mrepair::write_polygon_mesh(a.positional[1], mesh);
+  mrepair::Io_result w = mrepair::write_polygon_mesh(a.positional[1], mesh, cli::write_binary(a, io, a.positional[1]));
   if (!mrepair::succeeded(w.status))
     return cli::fail(a.positional[1] + ": " + mrepair::to_string(w.status) + " " + w.message);
   if (!cli::emit_report(a, report)) return 1;
+  summary.set_status(r.status, r.message);
+  summary.add_line("mode", r.mode + (r.mode == "adaptive" ? ", tolerance " + cli::summary_number(r.tolerance)
+                                                          : ", edge length " + cli::summary_number(r.target_edge_length)));
+  summary.add_sizes(r.faces_before, r.faces_after, vertices_in, r.vertices_after);
+  if (r.feature_edges) summary.add_count("feature_edges", r.feature_edges);
+  summary.add_closed(CGAL::is_closed(mesh) && r.faces_after > 0);
+  summary.add_output(a.positional[1], w);
+  summary.add_report(a);
+  cli::print_summary(a, summary);
   return cli::exit_code(r.status);
 }
 

@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "cli_io.h"
 #include "repair_options.h"
+#include "summary.h"
 
 #include <mrepair/input_profile.h>
 #include <mrepair/inspection_report.h>
@@ -43,9 +44,8 @@ const std::vector<cli::Option>& repair_command_options()
   return o;
 }
 
-void print_inspection(const char* title, const mrepair::Inspection_report& i, bool quiet)
+void print_inspection(const char* title, const mrepair::Inspection_report& i)
 {
-  if (quiet) return;
   std::cerr << title << ": " << i.vertices << " vertices, " << i.faces << " faces; "
             << "non-finite " << i.non_finite_vertices << ", isolated " << i.isolated_vertices
             << ", non-manifold edges " << i.non_manifold_edges << ", non-manifold vertices "
@@ -71,6 +71,7 @@ int run_repair(int argc, char** argv)
     cli::print_help(self, repair_command_options());
     return 0;
   }
+  cli::Summary summary("repair");
   // Each option goes to the library as given or absent: the defaults are the
   // library's (definitions.h), and without --max-hole the profile picks the limit.
   const cli::Repair_option_values v = cli::parse_repair_options(a);
@@ -90,8 +91,9 @@ int run_repair(int argc, char** argv)
     }
   }
   const std::size_t face_budget = html_faces.value_or(500000), max_elements = 100000;
-  const bool quiet = a.has("quiet") || a.has("json");
-  cli::Progress_printer printer(!quiet);
+  // the lines on stderr as the job goes: --verbose (the default prints a summary at the end)
+  const bool verbose = cli::verbosity(a) == cli::Verbosity::verbose;
+  cli::Progress_printer printer(a);
   // Memory: the input inspection and the soup stage allocate and free
   // arrays of hundreds of MB at 10M faces; served from the heap they reuse
   // warm pages (1.1M fewer page faults at 10M). From the cleaning on, blocks
@@ -114,7 +116,7 @@ int run_repair(int argc, char** argv)
     in = mrepair::read_polygon_or_triangle_soup(a.positional[0], points, polygons, triangles,
                                                 all_triangles);
   });
-  if (!quiet) std::cerr << "  read: " << std::to_string(t).substr(0, 6) << " s\n";
+  if (verbose) std::cerr << "  read: " << std::to_string(t).substr(0, 6) << " s\n";
   if (in.status != mrepair::Status::ok && in.status != mrepair::Status::non_finite_input &&
       in.status != mrepair::Status::invalid_index)
     return cli::fail(in.message.empty() ? a.positional[0] + ": cannot read" : in.message);
@@ -128,7 +130,8 @@ int run_repair(int argc, char** argv)
   mrepair::Io_result out;
   double write_seconds = 0.;
   auto write_output = [&] {
-    write_seconds = cli::timed([&] { out = mrepair::write_polygon_mesh(a.positional[1], mesh, a.has("binary")); });
+    write_seconds = cli::timed(
+        [&] { out = mrepair::write_polygon_mesh(a.positional[1], mesh, cli::write_binary(a, in, a.positional[1])); });
   };
   bool written_beside = false;
 #ifdef CGAL_LINKED_WITH_TBB
@@ -154,8 +157,8 @@ int run_repair(int argc, char** argv)
     } else if (s != "before") {  // the soup stage reuses the inspection's pages
       mrepair::cli::release_freed_memory_above(release_above);
     }
-    if (quiet) return;
-    if (s == "before") print_inspection("before", r.before, quiet);
+    if (!verbose) return;
+    if (s == "before") print_inspection("before", r.before);
     if (s == "close_gaps") {
       const mrepair::Gap_closing_result& g = r.gaps;
       std::cerr << "close gaps: tolerance " << g.tolerance
@@ -175,7 +178,7 @@ int run_repair(int argc, char** argv)
                 << x.local_faces_added << ", holes filled after " << r.holes_after_intersections.holes_filled
                 << "\n";
     }
-    if (s == "after") print_inspection("after", r.after, quiet);
+    if (s == "after") print_inspection("after", r.after);
   };
   namespace MP = mrepair::parameters;
   // the thresholds of the job's inspections (repair.h), for the defects drawn
@@ -200,7 +203,7 @@ int run_repair(int argc, char** argv)
                                                    : mrepair::internal::indexed_faces_of_soup(points, polygons),
                                      d, face_budget, max_elements);
     });
-    if (!quiet) std::cerr << "  html: input defects: " << std::to_string(seconds).substr(0, 6) << " s\n";
+    if (verbose) std::cerr << "  html: input defects: " << std::to_string(seconds).substr(0, 6) << " s\n";
   }
   const auto np =
       MP::input_profile(
@@ -241,7 +244,7 @@ int run_repair(int argc, char** argv)
   }
 
   if (!written_beside) write_output();
-  if (!quiet) std::cerr << "  write: " << std::to_string(write_seconds).substr(0, 6) << " s\n";
+  if (verbose) std::cerr << "  write: " << std::to_string(write_seconds).substr(0, 6) << " s\n";
   out.to_report(report.section("output"));
   report.section("output").add("seconds", write_seconds);
   if (!cli::emit_report(a, report)) return 1;
@@ -273,10 +276,21 @@ int run_repair(int argc, char** argv)
       error = cli::write_studio_report(html_template, a.get("html"), title, html_before, html_after, report, settings);
     });
     if (!error.empty()) return cli::fail(error);
-    if (!quiet) std::cerr << "  html: " << a.get("html") << ": " << std::to_string(seconds).substr(0, 6) << " s\n";
+    if (verbose) std::cerr << "  html: " << a.get("html") << ": " << std::to_string(seconds).substr(0, 6) << " s\n";
   }
   if (out.status != mrepair::Status::ok)
     return cli::fail(out.message.empty() ? a.positional[1] + ": cannot write" : out.message);
+  summary.set_status(r.status, !r.message.empty() ? r.message : r.clean.message);
+  summary.add_profile(std::string(mrepair::to_string(r.clean.profile.profile)) +
+                      (r.clean.profile.chosen_by_user ? " (chosen)" : ""));
+  summary.add_sizes(r.before.faces, r.after.faces, r.before.vertices, r.after.vertices);
+  summary.add_changes(r.before, r.after);
+  summary.add_closed(r.after.closed);
+  summary.add_intersection_free(r.after);
+  summary.add_output(a.positional[1], out);
+  summary.add_report(a);
+  if (a.has("html")) summary.add_line("html", a.get("html"));
+  cli::print_summary(a, summary);
   if (r.status == mrepair::Status::empty_input)
     return cli::fail(a.positional[0] +
                      ": nothing to repair: no face is left once degenerate, duplicate and invalid "

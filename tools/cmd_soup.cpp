@@ -4,6 +4,8 @@
 // OFF, PLY) into an oriented manifold triangle mesh; prints the inspection of
 // the input soup and of the output mesh beside the repair's own counters.
 #include "cli.h"
+#include "cli_io.h"
+#include "summary.h"
 
 #include <mrepair/inspect.h>
 #include <mrepair/io.h>
@@ -31,7 +33,8 @@ const std::vector<cli::Option> options = {
     {"keep-two-sided", false, "keep both faces of a two-sided sheet (same vertices, opposite orientations)"},
     {"orient-outward", false, "closed components bound a volume (the default)"},
     {"no-orient-outward", false, "keep the input orientation of most faces of each component"},
-    {"binary", false, "write a binary file when the format has one"},
+    {"binary", false, "write a binary file (PLY, STL; default: the input's encoding for its own format, binary for another)"},
+    {"ascii", false, "write an ASCII file"},
 };
 
 int run(int argc, char** argv);
@@ -47,6 +50,7 @@ int run(int argc, char** argv)
     cli::print_help(command, options);
     return 0;
   }
+  cli::Summary summary("soup");
   const double eps = args.get_double("epsilon", 0.0);
   const double merge = args.get_double("merge-epsilon", 0.0);
   if (eps < 0) throw cli::Usage_error("--epsilon expects a non-negative distance");
@@ -55,7 +59,7 @@ int run(int argc, char** argv)
     throw cli::Usage_error("--orient-outward and --no-orient-outward exclude each other");
   const std::string input = args.positional[0], output = args.positional[1];
 
-  cli::Progress_printer printer(!args.has("quiet") && !args.has("json"));
+  cli::Progress_printer printer(args);
   std::vector<Point> points;
   // an all-triangle file is read into fixed arrays (see read_polygon_or_triangle_soup)
   std::vector<std::vector<std::size_t>> polygons;
@@ -72,9 +76,10 @@ int run(int argc, char** argv)
   mrepair::Report report;
   io.to_report(report.section("file"));
   Mesh mesh;
+  mrepair::Inspection_report before, after;
   auto inspect_and_repair = [&](auto& soup) {
-    mrepair::inspect_polygon_soup(points, soup, MP::count_self_intersections(false))
-        .to_summary_report(report.section("before"));
+    before = mrepair::inspect_polygon_soup(points, soup, MP::count_self_intersections(false));
+    before.to_summary_report(report.section("before"));
     return mrepair::polygon_soup_to_manifold_mesh(
         points, soup, mesh,
         MP::snap_epsilon(eps, MP::merge_epsilon(merge, MP::keep_two_sided(args.has("keep-two-sided"),
@@ -88,15 +93,23 @@ int run(int argc, char** argv)
     cli::emit_report(args, report);
     return cli::fail(input + ": " + mrepair::to_string(r.status) + (r.message.empty() ? "" : " (" + r.message + ")"));
   }
-  mrepair::inspect(mesh, MP::count_self_intersections(false))
-      .to_summary_report(report.section("after"));
+  after = mrepair::inspect(mesh, MP::count_self_intersections(false));
+  after.to_summary_report(report.section("after"));
 
   printer.start_phase("write");
-  mrepair::Io_result wr = mrepair::write_polygon_mesh(output, mesh, args.has("binary"));
+  mrepair::Io_result wr = mrepair::write_polygon_mesh(output, mesh, cli::write_binary(args, io, output));
   printer.end_phase("write");
   if (wr.status != mrepair::Status::ok)
     return cli::fail(wr.message.empty() ? output + ": " + mrepair::to_string(wr.status) : wr.message);
   if (!cli::emit_report(args, report)) return 1;
+  summary.set_status(r.status, r.message);
+  summary.add_sizes(before.faces, after.faces, before.vertices, after.vertices);
+  summary.add_changes(before, after);
+  summary.add_closed(after.closed);
+  summary.add_intersection_free(after);
+  summary.add_output(output, wr);
+  summary.add_report(args);
+  cli::print_summary(args, summary);
   return cli::exit_code(r.status);
 }
 

@@ -35,7 +35,8 @@ inline const std::vector<Option>& repair_options()
        "count self-intersections in the inspection of the input too (off: 1.9 s of a 6.8 s job at 1M faces)"},
       {"keep-shells-separate", false, "do not merge overlapping closed shells into their union"},
       {"no-resolve-intersections", false, "leave crossings as the cleaning left them (no solid repair)"},
-      {"binary", false, "write a binary file (PLY, STL)"}};
+      {"binary", false, "write a binary file (PLY, STL; default: the input's encoding for its own format, binary for another)"},
+      {"ascii", false, "write an ASCII file"}};
   return o;
 }
 

@@ -132,6 +132,19 @@ Io_result write_polygon_soup(const std::string& path, const std::vector<Point>& 
 }
 
 /// \ingroup mrepair_io
+/// the encoding that keeps the file's own when a mesh read as `input` (the
+/// result of a reader: its `format` and `binary`) is written to `output_path`:
+/// the input's encoding when the output has the input's format, else binary
+/// where the output's format has a binary variant (PLY, STL). The `binary`
+/// argument of `write_polygon_mesh` and `write_polygon_soup`.
+inline bool keeps_encoding_binary(const Io_result& input, const std::string& output_path)
+{
+  const std::string format = internal::io::extension(output_path);
+  if (!input.format.empty() && format == input.format) return input.binary;
+  return internal::io::has_binary_variant(internal::io::file_format(format));
+}
+
+/// \ingroup mrepair_io
 /// returns `true` when `polygons` (indices into `num_points` points) form a
 /// manifold, consistently oriented polygon mesh: the test of
 /// `CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh`, done in
