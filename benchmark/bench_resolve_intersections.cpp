@@ -18,6 +18,15 @@
 // call alone (wall time; `result.cpu_seconds` is the CPU time of all threads
 // in it); the harness prints CGAL time / mrepair time.
 //
+// A fourth column: CGAL's PMP::experimental::autorefine_and_remove_self_intersections
+// (5.5 and 6.x, corefinement.h): refines the mesh against itself and keeps
+// its outer patches.
+//
+// Input `generated:assembly:N` (instead of a file): N closed bodies made in
+// code, boxes and UV spheres at seeded random places in a cube sized so that
+// each overlaps a few others (std::mt19937 seed 50, the same on every run),
+// the assembly case of issue 50.
+//
 // Time bound: with MREPAIR_BENCH_TIME_LIMIT=SECONDS in the environment, a
 // variant whose call runs longer is stopped by SIGALRM (the harness then
 // prints "over the time limit" in its column; the other column is kept).
@@ -42,12 +51,18 @@
 #include <vector>
 #endif
 
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <array>
+#include <cmath>
 #include <cstdlib>
+#include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace {
 namespace resolve_intersections_task {  // a namespace of its own: the harness is a unity build
@@ -60,8 +75,65 @@ namespace MP = mrepair::parameters;
 using mrepair::bench::Measurement;
 
 
+// N overlapping closed bodies (boxes and UV spheres), seeded.
+Mesh generated_assembly(std::size_t n)
+{
+  std::vector<Point> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  std::mt19937 random(50);
+  std::uniform_real_distribution<double> unit(0., 1.);
+  const double side = std::cbrt(double(n)) * 0.9;  // about one neighbour per body side
+  const double pi = 3.14159265358979323846;
+  for (std::size_t b = 0; b < n; ++b) {
+    const double cx = side * unit(random), cy = side * unit(random), cz = side * unit(random);
+    const std::size_t base = points.size();
+    if (b % 2 == 0) {
+      const double hx = 0.3 + 0.4 * unit(random), hy = 0.3 + 0.4 * unit(random), hz = 0.3 + 0.4 * unit(random);
+      for (int k = 0; k < 8; ++k)
+        points.emplace_back(cx + (k & 1 ? hx : -hx), cy + (k & 2 ? hy : -hy), cz + (k & 4 ? hz : -hz));
+      // outward: each face's corners counter-clockwise seen from outside
+      const std::size_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+      for (const auto& q : quads) {
+        triangles.push_back({base + q[0], base + q[1], base + q[2]});
+        triangles.push_back({base + q[0], base + q[2], base + q[3]});
+      }
+    } else {
+      const double r = 0.35 + 0.4 * unit(random);
+      const std::size_t nlat = 10, nlon = 16;
+      points.emplace_back(cx, cy, cz + r);
+      for (std::size_t k = 1; k < nlat; ++k)
+        for (std::size_t j = 0; j < nlon; ++j) {
+          const double t = pi * double(k) / double(nlat), f = 2 * pi * double(j) / double(nlon);
+          points.emplace_back(cx + r * std::sin(t) * std::cos(f), cy + r * std::sin(t) * std::sin(f),
+                              cz + r * std::cos(t));
+        }
+      points.emplace_back(cx, cy, cz - r);
+      auto id = [&](std::size_t k, std::size_t j) {
+        if (k == 0) return base;
+        if (k == nlat) return base + 1 + (nlat - 1) * nlon;
+        return base + 1 + (k - 1) * nlon + j % nlon;
+      };
+      for (std::size_t j = 0; j < nlon; ++j) triangles.push_back({id(0, 0), id(1, j), id(1, j + 1)});
+      for (std::size_t k = 1; k + 1 < nlat; ++k)
+        for (std::size_t j = 0; j < nlon; ++j) {
+          triangles.push_back({id(k, j), id(k + 1, j), id(k + 1, j + 1)});
+          triangles.push_back({id(k, j), id(k + 1, j + 1), id(k, j + 1)});
+        }
+      for (std::size_t j = 0; j < nlon; ++j) triangles.push_back({id(nlat, 0), id(nlat - 1, j + 1), id(nlat - 1, j)});
+    }
+  }
+  Mesh m;
+  std::vector<Mesh::Vertex_index> v;
+  for (const Point& p : points) v.push_back(m.add_vertex(p));
+  for (const auto& t : triangles) m.add_face(v[t[0]], v[t[1]], v[t[2]]);
+  return m;
+}
+
 Mesh load(const std::string& path)
 {
+  const std::string generated = "generated:assembly:";
+  if (path.compare(0, generated.size(), generated) == 0)
+    return generated_assembly(std::size_t(std::stoul(path.substr(generated.size()))));
   return mrepair::bench::load_mesh<Mesh>(
       path, [](const std::string& f, Mesh& m) { return mrepair::read_polygon_mesh(f, m); });
 }
@@ -141,6 +213,26 @@ Measurement run_cgal(const std::string& input)
   return out;
 }
 
+Measurement run_cgal_autorefine_and_remove(const std::string& input)
+{
+  Mesh m = load(input);
+  Measurement out;
+  table(m, out.before);
+  bool fixed = false;
+  timed(m, out, [&](Mesh& mesh) {
+    try {
+      fixed = PMP::experimental::autorefine_and_remove_self_intersections(mesh);
+    } catch (const std::exception&) {
+      fixed = false;  // CGAL's autorefinement throws on some configurations
+    }
+  });
+  out.status = fixed ? "ok" : "not all removed";
+  out.result.add("returned", fixed);
+  m.collect_garbage();
+  table(m, out.after);
+  return out;
+}
+
 #if CGAL_VERSION_NR >= 1060000000
 Measurement run_cgal_autorefine(const std::string& input)
 {
@@ -176,9 +268,11 @@ Measurement run_cgal_autorefine(const std::string& input)
 mrepair::bench::Task_registrar reg{
     {"resolve-intersections",
      "crossings of a triangle mesh: resolve_intersections vs "
-     "PMP::experimental::remove_self_intersections (env MREPAIR_BENCH_TIME_LIMIT=seconds bounds each call)",
+     "PMP::experimental::remove_self_intersections and autorefine_and_remove_self_intersections; "
+     "input generated:assembly:N for N overlapping bodies (env MREPAIR_BENCH_TIME_LIMIT=seconds bounds each call)",
      {{"mrepair::resolve", run_mrepair},
       {"CGAL remove_self_int", run_cgal},
+      {"CGAL autoref+remove", run_cgal_autorefine_and_remove},
 #if CGAL_VERSION_NR >= 1060000000
       {"CGAL autorefine_soup", run_cgal_autorefine},
 #endif

@@ -1,6 +1,8 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
-// Resolves the crossings of a triangle mesh: overlapping closed shells become
-// their union, a shell crossing itself is repaired locally.
+// Resolves the crossings of a triangle mesh: the closed shells that cross
+// (each other or themselves) become one solid, the boundary of the cells of
+// nonzero winding number of their exact arrangement; open shells crossing
+// themselves are repaired locally; nested closed shells go into a union.
 // usage: example_resolve_intersections [INPUT [OUTPUT]]
 // Without INPUT: two unit cubes, the second shifted by half a unit along
 // every axis, so that each passes through the other.
@@ -34,9 +36,12 @@ int main(int argc, char** argv)
     }
   }
   namespace MP = mrepair::parameters;
-  // keep the shells apart with merge_overlapping_shells(false)
-  mrepair::Intersection_repair_result r =
-      mrepair::resolve_intersections(mesh, MP::merge_overlapping_shells(true, MP::max_local_rounds(3)));
+  // solidify_closed_shells(false): the local repair and the union alone, as
+  // before issue 50; merge_overlapping_shells(false) keeps the shells apart
+  mrepair::Intersection_repair_result r = mrepair::resolve_intersections(
+      mesh, MP::solidify_closed_shells(true, MP::merge_overlapping_shells(true, MP::max_local_rounds(3))));
+  // shells_solidified, arrangement_faces; solidify_note says why the shells
+  // were left as they were (arrangement_too_large, rounding_left_crossings...)
   mrepair::Report report;
   r.to_report(report.section("resolve_intersections"));
   std::cout << report.to_text();

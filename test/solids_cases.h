@@ -250,8 +250,7 @@ TYPED_TEST(Solids, two_crossing_cubes_become_their_union)
   EXPECT_GT(r.crossing_pairs_before, 0u);
   expect_resolved(m, r, true);
   EXPECT_EQ(components(m), 1u);
-  EXPECT_EQ(r.shells_merged, 2u) << describe(r);
-  EXPECT_EQ(r.solids_from_unions, 1u);
+  EXPECT_EQ(r.shells_solidified, 2u) << describe(r);
   expect_volume(m, 2. - 0.125);
   expect_no_point_lost(m, s.points);
 }
@@ -341,7 +340,7 @@ TYPED_TEST(Solids, ten_overlapping_boards_become_one_solid)
   EXPECT_GT(r.crossing_pairs_before, 0u);
   expect_resolved(m, r, true);
   EXPECT_EQ(components(m), 1u) << describe(r);
-  EXPECT_EQ(r.shells_merged, 10u) << describe(r);
+  EXPECT_EQ(r.shells_solidified, 10u) << describe(r);
   const double v = CGAL::is_closed(m) ? PMP::volume(m) : 0.;
   EXPECT_GT(v, 6. * 1.3 * 0.5);  // more than one plank
   EXPECT_LT(v, volumes);          // less than the boards counted apart
@@ -365,14 +364,43 @@ TYPED_TEST(Solids, shell_folded_through_itself_is_repaired_locally)
     for (std::size_t i = 0; i <= last; ++i) s.points[i] = Point(s.points[i].x(), s.points[i].y(), s.points[i].z() - 2.3);
     Mesh m = to_mesh<Mesh>(s);
     ASSERT_TRUE(PMP::does_self_intersect(m));
+    // the solid of nonzero winding number touches itself along the fold
+    // (the tip below the south cap meets the body there): the faces around
+    // those edges may be refused as they round; the local repair then runs
     const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
     EXPECT_GT(r.crossing_pairs_before, 0u);
+    if (r.shells_solidified == 1u) {
+      expect_resolved(m, r, true);
+      expect_no_point_lost(m, s.points);
+      continue;
+    }
     EXPECT_GT(r.local_rounds, 0u);
     EXPECT_GT(r.local_faces_removed, 0u);
     expect_resolved(m, r, true);
     EXPECT_EQ(r.local_holes_left_open, 0u) << describe(r);
     expect_no_point_lost(m, s.points, [](const Point& p) { return std::abs(p.z()) >= 0.7; });
   }
+}
+
+// 6c. A box whose top face is pushed down through its bottom (the top's
+// back edge moved below it): one closed shell whose top crosses its bottom
+// and whose side faces overlap themselves in their planes. One solid,
+// every corner on or inside it.
+TYPED_TEST(Solids, box_pushed_through_itself_becomes_one_solid)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = box(0, 1, 0, 1, 0, 1);
+  // the back edge of the top goes below the bottom: the top face crosses the
+  // bottom, and the two side faces fold over themselves in their planes
+  for (Point& p : s.points)
+    if (p.z() == 1 && p.y() == 1) p = Point(p.x(), 0.5, -0.5);
+  Mesh m = to_mesh<Mesh>(s);
+  ASSERT_TRUE(PMP::does_self_intersect(m));
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  EXPECT_EQ(r.shells_solidified, 1u) << describe(r);
+  expect_resolved(m, r, true);
+  expect_no_point_lost(m, s.points);
 }
 
 // 7. A fine sphere with a fold made by moving one equator vertex past its
@@ -479,7 +507,7 @@ TYPED_TEST(Solids, sphere_without_crossings_is_unchanged)
   expect_no_point_lost(m, s.points);
 }
 
-// 11. The union's output order is repeatable. CGAL's corefinement numbers
+// 11. The output order is repeatable (the solidification's, as the union's before it). CGAL's corefinement numbers
 // what it creates in an order of heap addresses, which varied with the
 // thread timing of the stages before (`mrepair repair` on CGAL's bones.off:
 // three different files for the same input). Here the heap is laid out
@@ -517,12 +545,78 @@ TYPED_TEST(Solids, union_output_order_does_not_depend_on_heap_addresses)
     Mesh m = to_mesh<Mesh>(s);
     const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
     expect_resolved(m, r, true);
-    EXPECT_EQ(r.solids_from_unions, 2u) << describe(r);
-    EXPECT_EQ(r.shells_merged, 5u) << describe(r);
+    EXPECT_EQ(r.shells_solidified, 5u) << describe(r);
+    EXPECT_EQ(components(m), 2u) << describe(r);
     const std::string order = order_of(m);
     if (layout == 0) first = order;
     else EXPECT_TRUE(order == first) << "another vertex or face order than with the first layout";
   }
+}
+
+// 12. A generated assembly: 24 bodies (boxes and spheres) on a jittered
+// lattice, each overlapping its neighbours, some passing through two or
+// three others, one box coplanar with another on a face (CAD's coincident
+// faces). One solid: closed, valid, no crossing, no input point lost.
+TYPED_TEST(Solids, generated_assembly_of_overlapping_bodies_becomes_one_solid)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  for (int i = 0; i < 24; ++i) {
+    const double x = 0.8 * (i % 4) + 0.05 * ((i * 7) % 5), y = 0.8 * ((i / 4) % 3) + 0.04 * ((i * 3) % 4),
+                 z = 0.9 * (i / 12) + 0.03 * ((i * 5) % 3);
+    if (i % 3 == 0) s = merged(s, uv_sphere(8, 12, 0.55, Point(x, y, z)));
+    else s = merged(s, box(x - 0.45, x + 0.45, y - 0.35, y + 0.4, z - 0.5, z + 0.45));
+  }
+  // a box in the plane of the bottom face of body 1 (same expression, same double)
+  const double z1 = 0.9 * (1 / 12) + 0.03 * ((1 * 5) % 3);
+  s = merged(s, box(0.3, 0.9, -0.2, 0.3, z1 - 0.5, z1 - 0.1));
+  Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  EXPECT_EQ(r.shells_solidified, 25u) << describe(r);
+  expect_resolved(m, r, true);
+  EXPECT_EQ(components(m), 1u) << describe(r);
+  expect_no_point_lost(m, s.points);
+}
+
+// 13. Two crossing boxes with a cavity (an inward sphere) inside their
+// overlap: the cavity stays a cavity. Volume: the union minus the sphere.
+TYPED_TEST(Solids, cavity_inside_crossing_bodies_is_kept)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup cavity = reversed(uv_sphere(10, 20, 0.2, Point(1.25, 0.5, 0.5)));
+  const Soup s = merged(merged(box(0, 1.5, 0, 1, 0, 1), box(1, 2.5, 0.1, 0.9, 0.1, 1.2)), cavity);
+  Mesh m = to_mesh<Mesh>(s);
+  const double v_cavity = -PMP::volume(to_mesh<Mesh>(cavity));
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  expect_resolved(m, r, true);
+  EXPECT_EQ(components(m), 2u) << describe(r);
+  const double union_volume = 1.5 + 1.5 * 0.8 * 1.1 - 0.5 * 0.8 * 0.9;
+  expect_volume(m, union_volume - v_cavity);
+  expect_no_point_lost(m, s.points);
+}
+
+// 14. A sheet (an open square) through a closed box: the sheet encloses
+// nothing and is left as it is; the box takes part in no solidification
+// (it crosses only the sheet); the crossings are reported as such.
+TYPED_TEST(Solids, sheet_through_a_box_is_left_alone)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = box(0, 1, 0, 1, 0, 1);
+  const std::size_t base = s.points.size();
+  s.points.insert(s.points.end(), {Point(-0.5, -0.5, 0.5), Point(1.5, -0.4, 0.5), Point(1.4, 1.5, 0.55),
+                                   Point(-0.4, 1.4, 0.45)});
+  s.polygons.push_back({base, base + 1, base + 2});
+  s.polygons.push_back({base, base + 2, base + 3});
+  Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  EXPECT_EQ(r.shells_solidified, 0u) << describe(r);
+  EXPECT_EQ(face_count(m), 14u);
+  EXPECT_EQ(r.crossing_pairs_after, r.crossing_pairs_before);
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
+  expect_no_point_lost(m, s.points);
 }
 
 // Bad input gets a status and leaves the mesh as it was: no face, a NaN

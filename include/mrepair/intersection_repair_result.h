@@ -39,6 +39,14 @@ struct Intersection_repair_result
   std::size_t union_faces_removed = 0;    ///< the merged shells' faces
   std::size_t union_faces_added = 0;      ///< the unions' faces
   std::size_t unions_failed = 0;          ///< unions refused (non-manifold result, rounding): shells kept
+  std::size_t shells_solidified = 0;      ///< closed shells replaced by one solid (winding numbers)
+  std::size_t solid_faces_removed = 0;    ///< their faces
+  std::size_t solid_faces_added = 0;      ///< the solid's faces
+  std::size_t arrangement_faces = 0;      ///< faces of the (last) exact arrangement
+  /// why the solidification left the closed shells as they were (empty: it did
+  /// not, or did not run): `arrangement_too_large`, `arrangement_failed`,
+  /// `arrangement_not_closed`, `arrangement_empty`, `rounding_left_crossings`
+  std::string solidify_note;
   std::size_t crossing_pairs_after = 0;
   std::size_t touching_pairs_after = 0;
   bool intersection_free = false;         ///< no crossing pair left
@@ -68,6 +76,10 @@ struct Intersection_repair_result
     f("union_faces_removed", &R::union_faces_removed);
     f("union_faces_added", &R::union_faces_added);
     f("unions_failed", &R::unions_failed);
+    f("shells_solidified", &R::shells_solidified);
+    f("solid_faces_removed", &R::solid_faces_removed);
+    f("solid_faces_added", &R::solid_faces_added);
+    f("arrangement_faces", &R::arrangement_faces);
     f("crossing_pairs_after", &R::crossing_pairs_after);
     f("touching_pairs_after", &R::touching_pairs_after);
     f("intersection_free", &R::intersection_free);
@@ -78,6 +90,7 @@ struct Intersection_repair_result
     r.add("status", to_string(status));
     if (!message.empty()) r.add("message", message);
     for_each_field([&](const char* name, auto member) { r.add(name, this->*member); });
+    if (!solidify_note.empty()) r.add("solidify_note", solidify_note);
     if (!unions.empty()) {
       Report& s = r.section("unions");
       for (std::size_t i = 0; i < unions.size(); ++i) s.add(std::to_string(i + 1), unions[i]);

@@ -175,6 +175,7 @@ MREPAIR_ADD_NAMED_PARAMETER(concurrent_inspection_polygons) // std::size_t (4,00
 MREPAIR_ADD_NAMED_PARAMETER(after_stage)                    // callable (const char* stage, const Repair_result&)
 // resolve_intersections.h
 MREPAIR_ADD_NAMED_PARAMETER(merge_overlapping_shells)  // bool: union of overlapping closed shells (true)
+MREPAIR_ADD_NAMED_PARAMETER(solidify_closed_shells)    // bool: crossing closed shells -> one solid by winding numbers (true)
 MREPAIR_ADD_NAMED_PARAMETER(max_local_rounds)          // rounds of the local repair of a shell crossing itself (3)
 // compare_to_reference.h
 MREPAIR_ADD_NAMED_PARAMETER(reference_tolerance)  // distance under which a reference vertex is on the output (1e-6 x diagonal)

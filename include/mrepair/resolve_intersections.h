@@ -63,8 +63,8 @@ namespace mrepair {
 ///
 /// \tparam TriangleMesh model of `MutableFaceGraph`, copyable (`CGAL::Surface_mesh`,
 ///   `CGAL::Polyhedron_3`)
-/// \param np optional: `vertex_point_map`; `merge_overlapping_shells` (bool,
-///   default true); `max_local_rounds` (std::size_t, default 3; 0: no local
+/// \param np optional: `vertex_point_map`; `solidify_closed_shells` (bool,
+///   default true); `merge_overlapping_shells` (bool, default true); `max_local_rounds` (std::size_t, default 3; 0: no local
 ///   repair); `refine_hole_patches` (bool, default true: the local repair's
 ///   patches are remeshed to the density around them; false keeps Liepa's
 ///   patch, as the CAD profile does); `visitor` (phase "resolve_intersections", stop polled between rounds)
@@ -82,6 +82,7 @@ Intersection_repair_result resolve_intersections(TriangleMesh& tm,
                                                 get_property_map(CGAL::vertex_point, tm));
   internal::solid::Resolver_settings settings;
   settings.merge_shells = internal::get_or(np, internal_np::merge_overlapping_shells, true);
+  settings.solidify = internal::get_or(np, internal_np::solidify_closed_shells, true);
   settings.local_rounds = internal::get_or(np, internal_np::max_local_rounds, std::size_t(3));
   settings.refine_patches = internal::get_or(np, internal_np::refine_hole_patches, true);
   auto finish = [&](Status s, const std::string& message) {
@@ -123,6 +124,11 @@ Intersection_repair_result resolve_intersections(TriangleMesh& tm,
   r.union_faces_removed = c.union_faces_removed;
   r.union_faces_added = c.union_faces_added;
   r.unions_failed = c.unions_failed;
+  r.shells_solidified = c.shells_solidified;
+  r.solid_faces_removed = c.solid_faces_removed;
+  r.solid_faces_added = c.solid_faces_added;
+  r.arrangement_faces = c.arrangement_faces;
+  r.solidify_note = c.solidify_note;
   r.crossing_pairs_after = c.crossing_after;
   r.touching_pairs_after = c.touching_after;
   r.intersection_free = s == Status::ok;

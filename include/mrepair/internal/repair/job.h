@@ -280,8 +280,13 @@ Repair_result run_repair_job(std::vector<Point>& points, std::vector<Polygon>& p
     {
       Phase_scope<Handle> phase(visitor, "resolve_intersections");
       // the cad profile's patches keep to the loop (no refinement), as its hole filling
+      // scans keep the local repair alone (a closed scan is a sheet that
+      // happens to close; its output stays as it was)
+      const bool scan = c.profile.profile == Input_profile::scan;
       ir = Stages::resolve_intersections(
-          out, MP::refine_hole_patches(get_or(np, internal_np::refine_hole_patches, !cad), np)
+          out, MP::solidify_closed_shells(
+                   get_or(np, internal_np::solidify_closed_shells, !scan),
+                   MP::refine_hole_patches(get_or(np, internal_np::refine_hole_patches, !cad), np))
                    .visitor(std::ref(forward)));
     }
     result.intersections_resolved = true;
@@ -289,9 +294,12 @@ Repair_result run_repair_job(std::vector<Point>& points, std::vector<Polygon>& p
     added.emplace_back("resolve_intersections_local", ir.local_faces_added);
     removed.emplace_back("resolve_intersections_union", ir.union_faces_removed);
     added.emplace_back("resolve_intersections_union", ir.union_faces_added);
+    removed.emplace_back("resolve_intersections_solid", ir.solid_faces_removed);
+    added.emplace_back("resolve_intersections_solid", ir.solid_faces_added);
     Report& rr = report.section("resolve_intersections");
     ir.to_report(rr);
-    const bool changed = ir.local_faces_removed + ir.local_faces_added + ir.union_faces_removed > 0;
+    const bool changed =
+        ir.local_faces_removed + ir.local_faces_added + ir.union_faces_removed + ir.solid_faces_removed > 0;
     // its last count is of its output (taken after its last change)
     crossings_known = succeeded(ir.status);
     if (changed && succeeded(ir.status)) {

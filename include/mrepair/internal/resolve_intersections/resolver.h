@@ -7,13 +7,17 @@
 #include <mrepair/definitions.h>
 #include <mrepair/internal/clean_scan_mesh/hole_filler.h>
 #include <mrepair/internal/local_operations.h>
+#include <mrepair/internal/resolve_intersections/arrangement.h>
 #include <mrepair/internal/resolve_intersections/crossings.h>
 #include <mrepair/internal/resolve_intersections/shells.h>
 #include <mrepair/internal/utility.h>
 #include <mrepair/status.h>
 
 #include <CGAL/Bbox_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Surface_mesh.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -38,6 +42,8 @@ namespace solid {
 struct Resolver_settings
 {
   bool merge_shells = true;          // union of overlapping closed shells
+  bool solidify = true;              // closed shells that cross: one solid by winding numbers
+  std::size_t arrangement_passes = 3;  // arrangements of the rounded result that still crosses
   std::size_t local_rounds = 3;      // rounds of the local repair (each a ring wider)
   bool refine_patches = true;        // the local repair's patches remeshed (not on CAD)
   std::size_t max_patch_vertices = 2000;  // longer loops of the local repair stay open
@@ -58,6 +64,11 @@ struct Resolver_counts
   std::size_t nested_shells_merged = 0;  // outward shells inside another outward shell, absorbed
   std::size_t union_faces_removed = 0, union_faces_added = 0;
   std::size_t unions_failed = 0;
+  std::size_t shells_solidified = 0;   // closed shells replaced by the winding-number solid
+  std::size_t solid_faces_removed = 0, solid_faces_added = 0;
+  std::size_t arrangement_faces = 0;   // of the last arrangement
+  std::size_t arrangement_passes = 0;
+  std::string solidify_note;           // why the solidification left the shells as they were
   std::vector<std::pair<std::string, std::size_t>> left_by_reason;  // crossing pairs left
   std::vector<std::string> unions;  // per union: the shells' faces (nested ones marked) -> the result's
 };
@@ -90,6 +101,11 @@ public:
   {
     counts.crossing_before = scan.crossing.size();
     counts.touching_before = scan.touching;
+    // closed shells that cross (themselves or each other): one solid
+    if (settings_.solidify && settings_.merge_shells && !scan.crossing.empty()) {
+      if (visitor.stop_requested()) return Status::cancelled;
+      if (solidify_closed_shells(scan)) scan = scan_crossings(pm_, vpm_);
+    }
     // the local repair leaves `scan` current; a union needs a new one
     if (!scan.crossing.empty()) {
       if (visitor.stop_requested()) return Status::cancelled;
@@ -112,6 +128,125 @@ private:
   std::vector<Shell<PM>> shells_of(Component_map& component) const
   {
     return label_shells(pm_, vpm_, component);
+  }
+
+  // ---------------------------------------------------------- solidify
+  // The closed shells that take part in a crossing become the boundary of
+  // the cells their arrangement gives a winding number >= 1 (arrangement.h).
+  // The result is rounded to doubles; while it crosses or has a degenerate
+  // face, the arrangement runs again on it (at most arrangement_passes). A
+  // result that is not a valid closed triangle mesh without crossing leaves
+  // the shells as they were (`solidify_note` says why).
+  bool solidify_closed_shells(const Crossing_scan<PM>& scan)
+  {
+    using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+    using Work_mesh = CGAL::Surface_mesh<Epick::Point_3>;
+    Component_map component = get(CGAL::dynamic_face_property_t<std::size_t>(), pm_);
+    std::vector<Shell<PM>> shells = shells_of(component);
+    std::vector<unsigned char> chosen(shells.size(), 0);
+    bool any = false;
+    for (const Pair& p : scan.crossing) {
+      const std::size_t a = get(component, p.first), b = get(component, p.second);
+      if (shells[a].closed && shells[b].closed) chosen[a] = chosen[b] = 1, any = true;
+    }
+    if (!any) return false;
+    // the chosen shells as a soup, and their crossing pairs by soup index
+    Triangle_soup soup;
+    std::vector<face_descriptor> doomed;
+    std::map<face_descriptor, std::size_t> index_of;
+    {
+      std::map<vertex_descriptor, std::size_t> vertex_index;
+      for (std::size_t c = 0; c < shells.size(); ++c) {
+        if (!chosen[c]) continue;
+        for (face_descriptor f : shells[c].faces) {
+          std::array<std::size_t, 3> t;
+          int k = 0;
+          for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_)) {
+            auto it = vertex_index.emplace(v, soup.points.size());
+            if (it.second) soup.points.push_back(point(vpm_, v));
+            if (k < 3) t[k] = it.first->second;
+            ++k;
+          }
+          if (k != 3) return false;
+          index_of.emplace(f, soup.triangles.size());
+          soup.triangles.push_back(t);
+          doomed.push_back(f);
+        }
+        ++counts.shells_solidified;
+      }
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    for (const Pair& p : scan.crossing) {
+      auto a = index_of.find(p.first), b = index_of.find(p.second);
+      if (a != index_of.end() && b != index_of.end()) pairs.emplace_back(a->second, b->second);
+    }
+    const std::size_t max_faces = 4 * soup.triangles.size() + 500000;
+    Work_mesh solid;
+    bool done = false;
+    for (std::size_t pass = 0; pass < settings_.arrangement_passes && !done; ++pass) {
+      ++counts.arrangement_passes;
+      Arrangement_outcome o = Winding_number_solidifier().run(soup, pairs, max_faces);
+      counts.arrangement_faces = o.pieces;
+      if (!o.ok) {
+        counts.solidify_note = o.reason;
+        break;
+      }
+      // the copies where the solid touches itself stay apart; points that
+      // rounding made equal or collinear are flat faces: the next pass
+      std::vector<Epick::Point_3> points;
+      for (const auto& p : o.solid.points) points.emplace_back(p[0], p[1], p[2]);
+      if (o.solid.triangles.empty()) {
+        counts.solidify_note = "arrangement_empty: no cell of nonzero winding number";
+        break;
+      }
+      if (!CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(o.solid.triangles)) {
+        counts.solidify_note = "arrangement_not_closed: the kept faces are not a polygon mesh";
+        break;
+      }
+      solid.clear();
+      CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, o.solid.triangles, solid);
+      if (!CGAL::is_valid_polygon_mesh(solid) || !CGAL::is_closed(solid) || !CGAL::is_triangle_mesh(solid)) {
+        counts.solidify_note = "arrangement_not_closed: the kept faces do not close";
+        break;
+      }
+      auto next = scan_crossings(solid, get(CGAL::vertex_point, solid));
+      if (next.status != Status::ok) {
+        counts.solidify_note = "arrangement_failed: the crossing test could not run";
+        break;
+      }
+      if (next.crossing.empty() && next.skipped == 0) {
+        done = true;
+        break;
+      }
+      // rounding made crossings or flat faces: arrange the rounded result
+      soup = Triangle_soup();
+      for (auto v : vertices(solid)) {
+        const auto& p = solid.point(v);
+        soup.points.push_back({{p.x(), p.y(), p.z()}});
+      }
+      for (auto f : faces(solid)) {
+        std::array<std::size_t, 3> t;
+        int k = 0;
+        for (auto v : CGAL::vertices_around_face(halfedge(f, solid), solid)) t[k++] = std::size_t(v.idx());
+        soup.triangles.push_back(t);
+      }
+      pairs.clear();
+      for (const auto& p : next.crossing) pairs.emplace_back(std::size_t(p.first.idx()), std::size_t(p.second.idx()));
+      counts.solidify_note = "rounding_left_crossings: " + std::to_string(next.crossing.size()) + " pairs, " +
+                             std::to_string(next.skipped) + " flat faces";
+    }
+    if (!done) {
+      counts.shells_solidified = 0;
+      return false;
+    }
+    counts.solidify_note.clear();
+    {
+      Local_operations<PM, VertexPointMap> ops(pm_, vpm_);
+      counts.solid_faces_removed += ops.remove_components(doomed);
+    }
+    counts.solid_faces_added += internal::face_count(solid);
+    CGAL::copy_face_graph(solid, pm_, CGAL::parameters::default_values(), CGAL::parameters::vertex_point_map(vpm_));
+    return true;
   }
 
   // --------------------------------------------------------------- local
