@@ -277,7 +277,7 @@ mrepair::bench::Task_registrar reg{
       {"CGAL autorefine_soup", run_cgal_autorefine},
 #endif
      },
-     "scan-clean"}};
+     "generated:assembly:20"}};
 
 } // namespace resolve_intersections_task
 } // namespace
