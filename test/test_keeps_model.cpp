@@ -7,12 +7,14 @@
 #include "fixtures.h"
 
 #include <mrepair/clean_boundaries.h>
+#include <mrepair/compare_to_reference.h>
 #include <mrepair/clean_scan_mesh.h>
 #include <mrepair/ensure_valid_mesh.h>
 #include <mrepair/fill_small_holes.h>
 #include <mrepair/input_profile.h>
 #include <mrepair/io.h>
 #include <mrepair/remove_small_components.h>
+#include <mrepair/repair.h>
 #include <mrepair/stitch_soup.h>
 
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -27,6 +29,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <random>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -106,6 +109,28 @@ std::size_t border_edges(const Mesh& m)
   for (auto h : halfedges(m))
     if (is_border(h, m)) ++n;
   return n;
+}
+
+// the number of face-connected components of `m`
+template <class Mesh>
+std::size_t part_count(const Mesh& m)
+{
+  using face_descriptor = typename boost::graph_traits<Mesh>::face_descriptor;
+  std::set<face_descriptor> seen;
+  std::size_t parts = 0;
+  for (face_descriptor seed : faces(m)) {
+    if (!seen.insert(seed).second) continue;
+    ++parts;
+    std::vector<face_descriptor> stack{seed};
+    while (!stack.empty()) {
+      const face_descriptor f = stack.back();
+      stack.pop_back();
+      for (auto h : CGAL::halfedges_around_face(halfedge(f, m), m))
+        if (!is_border(opposite(h, m), m) && seen.insert(face(opposite(h, m), m)).second)
+          stack.push_back(face(opposite(h, m), m));
+    }
+  }
+  return parts;
 }
 
 template <class C>
@@ -497,6 +522,75 @@ TYPED_TEST(Keeps_model, stray_facet_next_to_a_solid_is_removed_and_counted)
   Mesh k = to_mesh<Mesh>(merged(grid(4, 4, 5.0), translated(triangle(0), -3, -3, -3)));
   clean_and_check(k);
   EXPECT_EQ(face_count(k), 33u);
+}
+
+// Issue 50, item 3: no part is deleted for being small in a CAD or print
+// model. The doorman's case (757 parts, 1,882 faces lost to the small
+// component step): a body with many small closed parts and small open
+// patches of a few faces each; every face stays.
+TYPED_TEST(Keeps_model, cad_profile_keeps_every_small_part)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = icosphere(3, 10.0);  // 1,280 faces
+  for (int i = 0; i < 40; ++i) {
+    const double x = 12.0 + 0.5 * (i % 10), y = 0.5 * (i / 10);
+    s = merged(s, translated(cube(0.1), x, y, 0));              // closed, 12 faces
+    s = merged(s, translated(icosphere(0, 0.05), x, y, 3));     // closed, 20 faces
+    s = merged(s, translated(grid(2, 2, 0.02), x, y, 6));       // open, 8 faces
+    s = merged(s, translated(grid(4, 1, 0.02), x, y, 9));       // open strip, 8 faces
+  }
+  const std::size_t faces_in = s.polygons.size();
+  Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Scan_cleaning_result r = clean_and_check(m, Input_profile::cad);
+  EXPECT_EQ(r.components.faces_removed, 0u);
+  EXPECT_EQ(face_count(m), faces_in);
+  EXPECT_EQ(part_count(m), 161u);
+}
+
+// Only open debris of a few faces that encloses nothing goes: a lone triangle
+// and a quad by a solid; three faces of a tetrahedron enclose a volume (the
+// hole filler closes them) and a strip of four faces is a part.
+TYPED_TEST(Keeps_model, cad_profile_removes_only_open_debris_of_a_few_faces)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup fan;
+  fan.points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, 1)};
+  fan.polygons = {{0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  Soup s = cube(20.0);
+  s = merged(s, translated(triangle(0), -10, 0, 0));     // removed
+  s = merged(s, translated(grid(1, 1), -10, 5, 0));      // removed: 2 faces
+  s = merged(s, translated(fan, -10, 10, 0));            // kept and closed: 3 + 1 faces
+  s = merged(s, translated(grid(4, 1), -10, 15, 0));     // kept: 4 faces, a sheet
+  Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Scan_cleaning_result r = clean_and_check(m, Input_profile::cad);
+  EXPECT_EQ(r.components.faces_removed, 3u);
+  EXPECT_EQ(r.components.components_removed, 2u);
+  EXPECT_EQ(r.holes.holes_filled, 1u);
+  EXPECT_EQ(face_count(m), 12u + 4u + 4u);
+  EXPECT_EQ(part_count(m), 3u);
+}
+
+// A part inside another is absorbed by the union: its points end inside the
+// output, none is lost (compare_to_reference); a small part beside it stays.
+TYPED_TEST(Keeps_model, part_inside_another_is_absorbed_and_nothing_is_lost)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = cube(4.0);
+  s = merged(s, translated(cube(1.0), 1.5, 1.5, 1.5));       // inside: absorbed
+  s = merged(s, translated(icosphere(1, 0.3), 2, 2, 3.2));   // inside too
+  s = merged(s, translated(cube(0.1), 10, 0, 0));            // beside: a part
+  const std::vector<Point> input = s.points;
+  Mesh m;
+  const mrepair::Repair_result r = mrepair::repair_polygon_soup(s.points, s.polygons, m);
+  ASSERT_TRUE(mrepair::succeeded(r.status)) << r.message;
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
+  EXPECT_TRUE(CGAL::is_closed(m));
+  const mrepair::Reference_comparison c = mrepair::compare_to_reference(input, m);
+  EXPECT_EQ(c.status, Status::ok);
+  EXPECT_EQ(c.vertices, input.size());
+  EXPECT_EQ(c.vertices_lost, 0u);
+  EXPECT_GE(c.vertices_inside, 8u);
+  EXPECT_LE(c.max_distance, 1.5 + 1e-9);
 }
 
 TYPED_TEST(Keeps_model, input_kind_is_decided_and_can_be_forced)

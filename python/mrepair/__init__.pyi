@@ -50,6 +50,18 @@ def inspect(
 
     None: the library's default (doc/defects.md)."""
 
+def compare_to_reference(
+    V: Vertices,
+    F: Faces,
+    reference: Vertices,
+    *,
+    tolerance: Optional[float] = None,
+) -> Report:
+    """how much of `reference` (the vertices of a repair's input) the mesh (V, F) holds
+    (`mrepair inspect OUTPUT --reference INPUT`, its "reference" section), plus
+    "lost": the int64 indices of the reference points neither within `tolerance`
+    (None: 1e-6 x their bounding-box diagonal) of the surface nor inside it."""
+
 DefectKind = Dict[str, Any]
 """one kind of defect: "count" (int) and int64 arrays "vertices", "edges" (k, 2),
 "faces", "pairs" (k, 2) or "loops" (list of vertex arrays); see locate_defects"""

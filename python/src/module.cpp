@@ -6,6 +6,7 @@
 // files). The mesh calls are in mesh_calls.cpp.
 #include "binding.h"
 
+#include <mrepair/compare_to_reference.h>
 #include <mrepair/inspect.h>
 #include <mrepair/internal/studio/overlay.h>
 #include <mrepair/io.h>
@@ -107,6 +108,29 @@ py::object inspect(const py::object& vertices, const py::object& faces,
   });
   visitor.raise_if_stopped();
   return dict_of(report);
+}
+
+// `mrepair inspect OUTPUT --reference INPUT`: the "reference" section, plus the
+// indices of the lost reference vertices.
+py::object compare_to_reference_py(const py::object& vertices, const py::object& faces,
+                                   const py::object& reference, const std::optional<double>& tolerance)
+{
+  if (tolerance && !(*tolerance >= 0 && std::isfinite(*tolerance)))
+    raise_value_error("tolerance expects a finite, non-negative distance");
+  Soup s = soup_from(vertices, faces);
+  const std::vector<Point> reference_points = vertices_from(reference);
+  const Reference_comparison r = without_gil([&] {
+    return compare_to_reference(reference_points, s.points, s.polygons, MP::reference_tolerance(tolerance));
+  });
+  if (r.status == Status::invalid_parameter) raise_value_error(r.message);
+  Report report;
+  r.to_report(report);
+  py::object d = dict_of(report);
+  py::array_t<long long> lost(static_cast<py::ssize_t>(r.lost.size()));
+  auto out = lost.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < r.lost.size(); ++i) out(static_cast<py::ssize_t>(i)) = static_cast<long long>(r.lost[i]);
+  d["lost"] = lost;
+  return d;
 }
 
 // ---- defect locations, overlay and preview (doc/studio.md) -----------------------------
@@ -439,6 +463,21 @@ small_component: components with fewer faces are small.
 t_junction_tolerance: distance of a T-junction (None: 1e-4 x bbox diagonal).
 self_intersections: count self-intersecting face pairs (the costly test).
 progress: None or progress(phase: str, fraction: float); returning False cancels.)doc");
+
+  m.def("compare_to_reference", &mp::compare_to_reference_py, "V"_a, "F"_a, "reference"_a, py::kw_only(),
+        "tolerance"_a = py::none(),
+        R"doc(Returns how much of a reference (the input of a repair) the mesh (V, F) holds, a dict.
+
+The "reference" section of `mrepair inspect OUTPUT --reference INPUT`: vertices
+(finite reference points compared), vertices_lost (neither within tolerance of
+the surface nor inside a closed part of it), max_distance (absolute),
+max_distance_relative (to the reference's bounding-box diagonal),
+vertices_inside, tolerance, diagonal, inside_tested, status; and "lost", the
+int64 indices of the lost reference points.
+
+reference: an (N, 3) array, e.g. the V of the input.
+tolerance: a reference point this close to the surface is on it (None: 1e-6 x
+the diagonal).)doc");
 
   m.def("soup_to_manifold", &mp::soup_to_manifold, "V"_a, "F"_a, py::kw_only(),
         "epsilon"_a = 0.0, "merge_epsilon"_a = 0.0, "keep_two_sided"_a = false,

@@ -105,6 +105,31 @@ def test_inspect_counts_defects_of_a_soup():
     assert r["mesh"]["built"] is False
 
 
+def test_compare_to_reference():
+    V, F = sphere()
+    inner = sphere(radius=0.3)[0]  # inside the sphere: kept
+    beside = sphere(radius=0.3)[0] + [5.0, 0.0, 0.0]  # deleted: lost
+    reference = np.vstack([V, inner, beside])
+    r = mrepair.compare_to_reference(V, F, reference)
+    assert r["status"] == "ok" and r["inside_tested"] is True
+    assert r["vertices"] == len(reference)
+    assert r["vertices_inside"] == len(inner)
+    assert r["vertices_lost"] == len(beside)
+    assert r["lost"].dtype == np.int64
+    assert list(r["lost"]) == list(range(len(V) + len(inner), len(reference)))
+    assert r["max_distance"] == pytest.approx(4.3)
+    assert r["max_distance_relative"] == pytest.approx(4.3 / r["diagonal"])
+    # an open grid encloses nothing; the tolerance decides
+    V, F = grid(4, 4)
+    lifted = np.array(V, dtype=float)
+    lifted[3, 2] += 0.01
+    assert mrepair.compare_to_reference(V, F, lifted)["vertices_lost"] == 1
+    r = mrepair.compare_to_reference(V, F, lifted, tolerance=0.02)
+    assert r["vertices_lost"] == 0 and r["inside_tested"] is False and r["tolerance"] == 0.02
+    with pytest.raises(ValueError):
+        mrepair.compare_to_reference(V, F, lifted, tolerance=-1.0)
+
+
 def test_soup_to_manifold():
     V, F = defective_soup()
     V2, F2, report = mrepair.soup_to_manifold(V, F)
