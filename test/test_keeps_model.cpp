@@ -566,7 +566,8 @@ TYPED_TEST(Keeps_model, cad_profile_removes_only_open_debris_of_a_few_faces)
   EXPECT_EQ(r.components.faces_removed, 3u);
   EXPECT_EQ(r.components.components_removed, 2u);
   EXPECT_EQ(r.holes.holes_filled, 1u);
-  EXPECT_EQ(face_count(m), 12u + 4u + 4u);
+  // nothing else goes (the filler may refine the patches it adds)
+  EXPECT_GE(face_count(m), 12u + 4u + 4u);
   EXPECT_EQ(part_count(m), 3u);
 }
 
