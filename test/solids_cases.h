@@ -263,6 +263,27 @@ TYPED_TEST(Solids, two_crossing_cubes_become_their_union)
   expect_no_point_lost(m, s.points);
 }
 
+// 1b. A flat closed shell: the two sides of a unit square, split along
+// different diagonals, so that they overlap. It encloses no cell, so it is not
+// handed to the winding-number arrangement, which, on coplanar overlaps, costs
+// seconds for a few faces (a small-soup fuzz case of 4 polygons ran past the
+// watchdog in CI). The local repair deals with it; nothing is lost.
+TYPED_TEST(Solids, flat_closed_shell_is_not_solidified)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  s.points = {Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(0, 1, 0)};
+  s.polygons = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}};
+  Mesh m = to_mesh<Mesh>(s);
+  ASSERT_TRUE(CGAL::is_closed(m));
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  EXPECT_EQ(r.shells_solidified, 0u) << describe(r);
+  EXPECT_EQ(r.arrangement_faces, 0u) << describe(r);
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
+  EXPECT_TRUE(mrepair::succeeded(r.status)) << describe(r);
+}
+
 // 2. Two unit cubes sharing a face (the second at x + 1, its own vertices):
 // one closed box of volume 2.
 TYPED_TEST(Solids, cubes_sharing_a_face_become_one_box)

@@ -22,14 +22,6 @@
 
 #include <mrepair/internal/utility.h>
 
-#include <CGAL/Bbox_3.h>
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
-#include <CGAL/Projection_traits_xy_3.h>
-#include <CGAL/Projection_traits_xz_3.h>
-#include <CGAL/Projection_traits_yz_3.h>
-#include <CGAL/version.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -62,6 +54,42 @@ struct Arrangement_outcome
   std::size_t rays = 0, rays_shot_again = 0;
   Triangle_soup solid;              ///< the kept pieces, outward
 };
+
+// Builds the arrangement of `soup` whose crossing triangle pairs are `pairs`
+// (indices into soup.triangles) and keeps the boundary of the cells of
+// nonzero winding number; no more than `max_pieces` pieces.
+//
+// The exact arrangement (Epeck, three projected constrained triangulations)
+// costs about a minute of compiler time in every translation unit that
+// includes it. With MREPAIR_SEPARATE_ARRANGEMENT defined, this header only
+// declares it, and one translation unit of the program defines it by
+// including src/arrangement.cpp (the project's own build does so:
+// MREPAIR_COMPILE_ONCE); by default, header-only, it is an inline function.
+#ifdef MREPAIR_SEPARATE_ARRANGEMENT
+#define MREPAIR_ARRANGEMENT_INLINE
+#else
+#define MREPAIR_ARRANGEMENT_INLINE inline
+#endif
+MREPAIR_ARRANGEMENT_INLINE Arrangement_outcome arrange_winding_number_solid(
+    const Triangle_soup& soup, const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
+    std::size_t max_pieces);
+
+} // namespace solid
+} // namespace internal
+} // namespace mrepair
+
+#if !defined(MREPAIR_SEPARATE_ARRANGEMENT) || defined(MREPAIR_ARRANGEMENT_DEFINITION)
+#include <CGAL/Bbox_3.h>
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Projection_traits_xy_3.h>
+#include <CGAL/Projection_traits_xz_3.h>
+#include <CGAL/Projection_traits_yz_3.h>
+#include <CGAL/version.h>
+
+namespace mrepair {
+namespace internal {
+namespace solid {
 
 namespace arrangement_detail {
 
@@ -730,8 +758,16 @@ private:
   }
 };
 
+MREPAIR_ARRANGEMENT_INLINE Arrangement_outcome arrange_winding_number_solid(
+    const Triangle_soup& soup, const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
+    std::size_t max_pieces)
+{
+  return Winding_number_solidifier().run(soup, pairs, max_pieces);
+}
+
 } // namespace solid
 } // namespace internal
 } // namespace mrepair
+#endif // the definition
 
 #endif // MREPAIR_INTERNAL_RESOLVE_INTERSECTIONS_ARRANGEMENT_H

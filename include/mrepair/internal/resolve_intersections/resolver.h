@@ -144,10 +144,16 @@ private:
     Component_map component = get(CGAL::dynamic_face_property_t<std::size_t>(), pm_);
     std::vector<Shell<PM>> shells = shells_of(component);
     std::vector<unsigned char> chosen(shells.size(), 0);
+    // closed and not flat (a flat shell bounds no cell: shell_is_flat)
+    std::vector<signed char> solid_shell(shells.size(), -1);
+    auto bounds_a_solid = [&](std::size_t c) {
+      if (solid_shell[c] < 0) solid_shell[c] = shells[c].closed && !shell_is_flat(pm_, vpm_, shells[c]);
+      return solid_shell[c] == 1;
+    };
     bool any = false;
     for (const Pair& p : scan.crossing) {
       const std::size_t a = get(component, p.first), b = get(component, p.second);
-      if (shells[a].closed && shells[b].closed) chosen[a] = chosen[b] = 1, any = true;
+      if (bounds_a_solid(a) && bounds_a_solid(b)) chosen[a] = chosen[b] = 1, any = true;
     }
     if (!any) return false;
     // the chosen shells as a soup, and their crossing pairs by soup index
@@ -185,7 +191,7 @@ private:
     bool done = false;
     for (std::size_t pass = 0; pass < settings_.arrangement_passes && !done; ++pass) {
       ++counts.arrangement_passes;
-      Arrangement_outcome o = Winding_number_solidifier().run(soup, pairs, max_faces);
+      Arrangement_outcome o = arrange_winding_number_solid(soup, pairs, max_faces);
       counts.arrangement_faces = o.pieces;
       if (!o.ok) {
         counts.solidify_note = o.reason;

@@ -10,6 +10,7 @@
 #include <mrepair/internal/utility.h>
 
 #include <CGAL/Bbox_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Kernel/global_functions.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
@@ -101,6 +102,36 @@ std::vector<Shell<PolygonMesh>> label_shells(const PolygonMesh& pm, VertexPointM
     s.box = CGAL::Bbox_3(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
   }
   return shells;
+}
+
+// Whether every vertex of `shell` lies in one plane (exact predicates on
+// the coordinates as doubles). A flat closed shell encloses no volume: every
+// point off it has winding number 0, so the winding-number solidification
+// can only remove it, after an arrangement of coplanar triangles that costs
+// far more than its size suggests (nested rational constructions).
+template <typename PolygonMesh, typename VertexPointMap>
+bool shell_is_flat(const PolygonMesh& pm, VertexPointMap vpm, const Shell<PolygonMesh>& shell)
+{
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using P = K::Point_3;
+  auto to_point = [&](typename boost::graph_traits<PolygonMesh>::vertex_descriptor v) {
+    const Vec3 q = point(vpm, v);
+    return P(q[0], q[1], q[2]);
+  };
+  // a plane through three corners that are not collinear, then every corner
+  std::vector<P> plane;
+  for (auto f : shell.faces) {
+    for (auto v : CGAL::vertices_around_face(halfedge(f, pm), pm)) {
+      const P q = to_point(v);
+      if (plane.size() == 0 || (plane.size() == 1 && q != plane[0]) ||
+          (plane.size() == 2 && !CGAL::collinear(plane[0], plane[1], q))) {
+        plane.push_back(q);
+        continue;
+      }
+      if (plane.size() == 3 && CGAL::orientation(plane[0], plane[1], plane[2], q) != CGAL::COPLANAR) return false;
+    }
+  }
+  return true;
 }
 
 // Builds the empty mesh `out` from the triangles `triangles` over `points`
