@@ -8,7 +8,9 @@
 #     the harness runs every task once on a small generated input).
 #  2. CGAL 6.0.1 (Debian 13's libcgal-dev, unpacked into build/cgal-trixie by
 #     scripts/fetch_cgal.sh, nothing installed): builds the tests again with
-#     AddressSanitizer and UndefinedBehaviorSanitizer and warnings as errors in
+#     AddressSanitizer and UndefinedBehaviorSanitizer (arithmetic, shift,
+#     bounds, bool, enum, return checks; not null/alignment/object-size/vptr/
+#     pointer-overflow, which tripled GCC's time at -O1) and warnings as errors in
 #     mrepair's code, and runs them (scripts/test_cgal6.sh; the tests that run
 #     the programs use those of pass 1); the benchmark harness is compiled and
 #     linked there too, so an API difference in it shows on both releases.
