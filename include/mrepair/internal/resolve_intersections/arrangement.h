@@ -63,7 +63,7 @@ struct Arrangement_outcome
 // costs about a minute of compiler time in every translation unit that
 // includes it. With MREPAIR_SEPARATE_ARRANGEMENT defined, this header only
 // declares it, and one translation unit of the program defines it by
-// including src/arrangement.cpp (the project's own build does so:
+// compiling src/compile_once.cpp (the project's own build does so:
 // MREPAIR_COMPILE_ONCE); by default, header-only, it is an inline function.
 #ifdef MREPAIR_SEPARATE_ARRANGEMENT
 #define MREPAIR_ARRANGEMENT_INLINE
