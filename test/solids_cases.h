@@ -284,6 +284,26 @@ TYPED_TEST(Solids, flat_closed_shell_is_not_solidified)
   EXPECT_TRUE(mrepair::succeeded(r.status)) << describe(r);
 }
 
+// 1c. Two pairs of crossing boxes whose unions touch at one corner, (2,2,2):
+// the arrangement's kept faces meet there in two fans, a soup that is not a
+// polygon mesh (bodies of a printer's bed assembly touch so, and the whole
+// solid was refused). The corner gets a copy per fan: two bodies, closed,
+// volume 9 + 9.
+TYPED_TEST(Solids, crossing_bodies_touching_at_a_corner_become_one_solid)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup s = merged(merged(box(0, 2, 0, 2, 0, 2), box(1, 3, 0.5, 1.5, 0.5, 1.5)),
+                        merged(box(2, 4, 2, 4, 2, 4), box(3, 5, 2.5, 3.5, 2.5, 3.5)));
+  Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  expect_resolved(m, r, true);
+  EXPECT_EQ(r.shells_solidified, 4u) << describe(r);
+  EXPECT_EQ(components(m), 2u) << describe(r);
+  expect_volume(m, 18.);
+  expect_no_point_lost(m, s.points);
+}
+
 // 2. Two unit cubes sharing a face (the second at x + 1, its own vertices):
 // one closed box of volume 2.
 TYPED_TEST(Solids, cubes_sharing_a_face_become_one_box)
@@ -469,6 +489,36 @@ TYPED_TEST(Solids, small_hole_beside_a_crossing_is_closed)
   expect_no_point_lost(m, s.points, [&](const Point& p) {
     return CGAL::squared_distance(p, old) < 0.36;
   });
+}
+
+// 7b. An open box (its top removed) crossed by a board that passes through
+// one wall and over the opening: the hole filler refuses the cap, which
+// would cross the board, so the hole stayed open and the crossings with it
+// (class 5 of issue 50: a hole beside a crossing). The solid stage caps the
+// open box for the arrangement as the filler would have: one closed solid,
+// the union of the two boxes, volume 1 + 0.5 - 0.125.
+TYPED_TEST(Solids, open_box_crossed_beside_its_hole_becomes_one_solid)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup cup = box(0, 1, 0, 1, 0, 1);
+  cup.polygons.erase(std::remove_if(cup.polygons.begin(), cup.polygons.end(),
+                                    [&](const Polygon& p) {
+                                      return std::all_of(p.begin(), p.end(), [&](std::size_t i) {
+                                        return cup.points[i].z() == 1.;
+                                      });
+                                    }),
+                     cup.polygons.end());
+  ASSERT_EQ(cup.polygons.size(), 10u);
+  const Soup s = merged(cup, box(0.5, 1.5, 0.25, 0.75, 0.5, 1.5));
+  Mesh m = to_mesh<Mesh>(s);
+  ASSERT_FALSE(CGAL::is_closed(m));
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  expect_resolved(m, r, true);
+  EXPECT_EQ(r.shells_solidified, 2u) << describe(r);
+  EXPECT_EQ(components(m), 1u) << describe(r);
+  expect_volume(m, 1.375);
+  expect_no_point_lost(m, s.points);
 }
 
 // 8. Two tetrahedra glued on a doubled face (the face listed once for
