@@ -242,6 +242,22 @@ void expect_volume(const Mesh& m, double expected)
   EXPECT_NEAR(v, expected, 1e-9 * std::abs(expected)) << "volume " << v;
 }
 
+// resolve_intersections on the mesh of `s`: crossings found, none left,
+// closed; `shells` shells solidified into `parts` components of volume
+// `volume`; no input point lost.
+template <class Mesh>
+void expect_solidified(const Soup& s, std::size_t shells, std::size_t parts, double volume)
+{
+  Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  expect_resolved(m, r, true);
+  EXPECT_EQ(r.shells_solidified, shells) << describe(r);
+  EXPECT_EQ(components(m), parts) << describe(r);
+  expect_volume(m, volume);
+  expect_no_point_lost(m, s.points);
+}
+
 template <class Config>
 class Solids : public ::testing::Test
 {};
@@ -294,14 +310,7 @@ TYPED_TEST(Solids, crossing_bodies_touching_at_a_corner_become_one_solid)
   using Mesh = typename TypeParam::Mesh;
   const Soup s = merged(merged(box(0, 2, 0, 2, 0, 2), box(1, 3, 0.5, 1.5, 0.5, 1.5)),
                         merged(box(2, 4, 2, 4, 2, 4), box(3, 5, 2.5, 3.5, 2.5, 3.5)));
-  Mesh m = to_mesh<Mesh>(s);
-  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
-  EXPECT_GT(r.crossing_pairs_before, 0u);
-  expect_resolved(m, r, true);
-  EXPECT_EQ(r.shells_solidified, 4u) << describe(r);
-  EXPECT_EQ(components(m), 2u) << describe(r);
-  expect_volume(m, 18.);
-  expect_no_point_lost(m, s.points);
+  expect_solidified<Mesh>(s, 4, 2, 18.);
 }
 
 // 2. Two unit cubes sharing a face (the second at x + 1, its own vertices):
@@ -509,16 +518,7 @@ TYPED_TEST(Solids, open_box_crossed_beside_its_hole_becomes_one_solid)
                                     }),
                      cup.polygons.end());
   ASSERT_EQ(cup.polygons.size(), 10u);
-  const Soup s = merged(cup, box(0.5, 1.5, 0.25, 0.75, 0.5, 1.5));
-  Mesh m = to_mesh<Mesh>(s);
-  ASSERT_FALSE(CGAL::is_closed(m));
-  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
-  EXPECT_GT(r.crossing_pairs_before, 0u);
-  expect_resolved(m, r, true);
-  EXPECT_EQ(r.shells_solidified, 2u) << describe(r);
-  EXPECT_EQ(components(m), 1u) << describe(r);
-  expect_volume(m, 1.375);
-  expect_no_point_lost(m, s.points);
+  expect_solidified<Mesh>(merged(cup, box(0.5, 1.5, 0.25, 0.75, 0.5, 1.5)), 2, 1, 1.375);
 }
 
 // 8. Two tetrahedra glued on a doubled face (the face listed once for
