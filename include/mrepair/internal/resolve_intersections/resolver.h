@@ -237,6 +237,18 @@ private:
                                : std::array<vertex_descriptor, 3>{{loop[t[0]], loop[t[1]], loop[t[2]]}});
     }
     if (cap.empty()) return no_cap;
+    // the shell and its caps must make one polygon mesh: a cap edge that is
+    // already an edge of the shell would have three faces meet there, and
+    // the soup of all chosen shells would be refused as a whole
+    std::map<vertex_descriptor, std::size_t> local;
+    auto id = [&](vertex_descriptor v) { return local.emplace(v, local.size()).first->second; };
+    std::vector<std::array<std::size_t, 3>> closed;
+    for (face_descriptor f : shell.faces) {
+      const halfedge_descriptor h = halfedge(f, pm_);
+      closed.push_back({{id(source(h, pm_)), id(target(h, pm_)), id(target(next(h, pm_), pm_))}});
+    }
+    for (const auto& t : cap) closed.push_back({{id(t[0]), id(t[1]), id(t[2])}});
+    if (!CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(closed)) return no_cap;
     return large ? large_caps : small_caps;
   }
 
