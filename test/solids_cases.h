@@ -62,6 +62,46 @@ Soup box(double x0, double x1, double y0, double y1, double z0, double z1)
   return s;
 }
 
+// `box` without its bottom face (z = z0): an open part whose border is the
+// bottom rectangle.
+Soup box_without_bottom(double x0, double x1, double y0, double y1, double z0, double z1)
+{
+  Soup s = box(x0, x1, y0, y1, z0, z1);
+  s.polygons.erase(std::remove_if(s.polygons.begin(), s.polygons.end(),
+                                  [&](const Polygon& p) {
+                                    return std::all_of(p.begin(), p.end(),
+                                                       [&](std::size_t i) { return s.points[i].z() == z0; });
+                                  }),
+                   s.polygons.end());
+  return s;
+}
+
+// An open dome of `radius` on (cx, cy, cz), outward (up): an 8-vertex rim
+// whose points lie alternately `wobble` above and below z = cz, a ring at
+// 0.7 x radius, an apex. Its cap (an octagon) is over 40% of its area: by
+// the hole filler's rule a sheet's border, not a hole.
+Soup dome(double cx, double cy, double cz, double radius, double wobble)
+{
+  Soup s;
+  const std::size_t n = 8;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double a = 2 * pi * double(i) / double(n);
+    s.points.emplace_back(cx + radius * std::cos(a), cy + radius * std::sin(a), cz + (i % 2 ? wobble : -wobble));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const double a = 2 * pi * double(i) / double(n);
+    s.points.emplace_back(cx + 0.7 * radius * std::cos(a), cy + 0.7 * radius * std::sin(a), cz + 0.7 * radius);
+  }
+  s.points.emplace_back(cx, cy, cz + radius);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    s.polygons.push_back({i, j, n + j});
+    s.polygons.push_back({i, n + j, n + i});
+    s.polygons.push_back({n + i, n + j, 2 * n});
+  }
+  return s;
+}
+
 // index in `uv_sphere(nlat, nlon, ...)` of the vertex of ring k, column j
 // (mod nlon): ring 0 is the north pole, ring nlat the south pole.
 std::size_t uv_index(std::size_t nlat, std::size_t nlon, std::size_t k, std::size_t j)
@@ -519,6 +559,51 @@ TYPED_TEST(Solids, open_box_crossed_beside_its_hole_becomes_one_solid)
                      cup.polygons.end());
   ASSERT_EQ(cup.polygons.size(), 10u);
   expect_solidified<Mesh>(merged(cup, box(0.5, 1.5, 0.25, 0.75, 0.5, 1.5)), 2, 1, 1.375);
+}
+
+// 7c. A button on a body: an open dome whose rim sits on the body's top
+// face, alternately 0.01 above and below it (a part modelled on the smooth
+// surface, a little off the body's facets: the doorman's buttons). Its cap
+// is a sheet's border by the filler's rule, and half of its rim lies
+// outside the body, within a tenth of the rim's size: it is capped, and
+// body and button become one closed solid.
+TYPED_TEST(Solids, button_with_its_rim_a_little_off_the_body_becomes_one_solid)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup s = merged(box(0, 2, 0, 2, 0, 2), dome(1, 1, 2, 0.3, 0.01));
+  Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  expect_resolved(m, r, true);
+  EXPECT_EQ(r.shells_solidified, 2u) << describe(r);
+  EXPECT_EQ(components(m), 1u) << describe(r);
+  // the body and the dome above it (under a hemisphere of radius 0.3)
+  const double v = PMP::volume(m);
+  EXPECT_GT(v, 8.01);
+  EXPECT_LT(v, 8. + 2. / 3. * pi * 0.027);
+  expect_no_point_lost(m, s.points);
+}
+
+// 7d. The same kind of button on an open part that is itself stuck into the
+// body (a lid without its bottom, rim inside the body, cap over 40% of its
+// area). The button's rim is 0.15 above the body: it is capped in a second
+// round, once the lid, capped in the first, is among the solids.
+TYPED_TEST(Solids, button_on_a_part_stuck_into_the_body_is_capped_after_the_part)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup s = merged(merged(box(0, 2, 0, 2, 0, 2), box_without_bottom(0.5, 1.5, 0.5, 1.5, 1.95, 2.15)),
+                        dome(1, 1, 2.15, 0.2, 0.005));
+  Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  expect_resolved(m, r, true);
+  EXPECT_EQ(r.shells_solidified, 3u) << describe(r);
+  EXPECT_EQ(components(m), 1u) << describe(r);
+  // the body, the lid's 0.15 above it, the button
+  const double v = PMP::volume(m);
+  EXPECT_GT(v, 8.15);
+  EXPECT_LT(v, 8.15 + 2. / 3. * pi * 0.008);
+  expect_no_point_lost(m, s.points);
 }
 
 // 8. Two tetrahedra glued on a doubled face (the face listed once for

@@ -53,6 +53,11 @@ struct Resolver_settings
   std::size_t max_patch_vertices = 2000;  // longer loops of the local repair stay open
   std::size_t max_nesting_shells = 5000;  // above: no test for shells nested in others
   std::size_t max_cap_vertices = 500;    // longer border loops keep an open shell out of the solid
+  // a border point of an open part outside the solids it crosses still
+  // counts as stuck into them within this share of its loop's size (see
+  // cap_parts_stuck_into_solids)
+  double rim_outside_share = 0.1;
+  std::size_t sheet_cap_rounds = 4;
 };
 
 // Counters of the worker; the public result copies them.
@@ -255,10 +260,27 @@ private:
   // The open shells of `sheet_caps` whose every border point lies inside
   // the closed shells that take part in a crossing (non-zero winding number
   // of those shells, exact ray casts: compare_to_reference's test) get their
-  // caps (moved to `caps`) and count as solids.
+  // caps (moved to `caps`) and count as solids. A border point outside them
+  // by at most rim_outside_share of its loop's bounding-box diagonal counts
+  // as inside: a part modelled sitting on a curved body has its rim on the
+  // smooth surface, a little off the body's facets (the doorman's buttons:
+  // 0.8-5% of their loop outside, where the parts that merely cross another
+  // open part lie 29-220% of theirs away). The test runs again with the
+  // parts capped so far among the solids (a button on a capped part), for
+  // at most sheet_cap_rounds rounds.
   void cap_parts_stuck_into_solids(const std::vector<Shell<PM>>& shells, std::vector<signed char>& solid_shell,
                                    std::map<std::size_t, std::vector<std::array<vertex_descriptor, 3>>>& sheet_caps,
                                    std::map<std::size_t, std::vector<std::array<vertex_descriptor, 3>>>& caps) const
+  {
+    for (std::size_t round = 0; round < settings_.sheet_cap_rounds && !sheet_caps.empty(); ++round)
+      if (!cap_parts_stuck_into(shells, solid_shell, sheet_caps, caps)) break;
+  }
+
+  // One round of cap_parts_stuck_into_solids(): the solids are the closed
+  // shells and the capped ones; false when no part was capped.
+  bool cap_parts_stuck_into(const std::vector<Shell<PM>>& shells, std::vector<signed char>& solid_shell,
+                            std::map<std::size_t, std::vector<std::array<vertex_descriptor, 3>>>& sheet_caps,
+                            std::map<std::size_t, std::vector<std::array<vertex_descriptor, 3>>>& caps) const
   {
     using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
     using Work_mesh = CGAL::Surface_mesh<Epick::Point_3>;
@@ -267,26 +289,32 @@ private:
     std::vector<Epick::Point_3> points;
     std::vector<std::array<std::size_t, 3>> triangles;
     std::map<vertex_descriptor, std::size_t> index;
+    auto corner = [&](vertex_descriptor v) {
+      auto it = index.find(v);
+      if (it == index.end()) {
+        const Vec3 p = point(vpm_, v);
+        it = index.emplace(v, points.size()).first;
+        points.emplace_back(p[0], p[1], p[2]);
+      }
+      return it->second;
+    };
     for (std::size_t c = 0; c < shells.size(); ++c) {
-      if (solid_shell[c] != 1 || !shells[c].closed) continue;
+      const auto capped = caps.find(c);
+      if (solid_shell[c] != 1 || (!shells[c].closed && capped == caps.end())) continue;
       for (face_descriptor f : shells[c].faces) {
         std::array<std::size_t, 3> t;
         int k = 0;
         for (vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, pm_), pm_)) {
-          auto it = index.find(v);
-          if (it == index.end()) {
-            const Vec3 p = point(vpm_, v);
-            it = index.emplace(v, points.size()).first;
-            points.emplace_back(p[0], p[1], p[2]);
-          }
-          if (k < 3) t[k] = it->second;
+          if (k < 3) t[k] = corner(v);
           ++k;
         }
-        if (k != 3) return;
+        if (k != 3) return false;
         triangles.push_back(t);
       }
+      if (capped != caps.end())
+        for (const auto& t : capped->second) triangles.push_back({{corner(t[0]), corner(t[1]), corner(t[2])}});
     }
-    if (triangles.empty() || !CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(triangles)) return;
+    if (triangles.empty() || !CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(triangles)) return false;
     Work_mesh solids;
     CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, triangles, solids);
     const Work_vpm wvpm = get(CGAL::vertex_point, solids);
@@ -297,23 +325,52 @@ private:
     const CGAL::Bbox_3 b = tree.bbox();
     const double reach = 4. * std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) +
                                         CGAL::square(b.zmax() - b.zmin())) + 1.;
-    for (auto& sc : sheet_caps) {
-      std::set<vertex_descriptor> rim;
-      for (const auto& t : sc.second) rim.insert(t.begin(), t.end());
+    bool capped_any = false;
+    for (auto sc_it = sheet_caps.begin(); sc_it != sheet_caps.end();) {
+      auto& sc = *sc_it;
+      // the border loops: the corners of each loop's cap triangles
+      std::map<vertex_descriptor, std::size_t> loop_of;
+      Union_find<std::size_t> loops(3 * sc.second.size());
+      for (std::size_t t = 0; t < sc.second.size(); ++t)
+        for (int k = 0; k < 3; ++k) {
+          const auto it = loop_of.emplace(sc.second[t][k], 3 * t + k).first;
+          loops.unite(it->second, 3 * t);
+        }
+      std::map<std::size_t, CGAL::Bbox_3> loop_box;
+      for (const auto& vl : loop_of) {
+        const Vec3 p = point(vpm_, vl.first);
+        loop_box[loops.find(vl.second)] += CGAL::Bbox_3(p[0], p[1], p[2], p[0], p[1], p[2]);
+      }
       bool inside = true;
-      for (vertex_descriptor v : rim) {
-        const Vec3 p = point(vpm_, v);
+      for (const auto& vl : loop_of) {
+        const Vec3 p = point(vpm_, vl.first);
+        const Epick::Point_3 q(p[0], p[1], p[2]);
         int winding = 0;
-        if (!winding_number(tree, solids, wvpm, Epick::Point_3(p[0], p[1], p[2]), reach, winding) ||
-            winding == 0) {
+        if (!winding_number(tree, solids, wvpm, q, reach, winding)) {
+          inside = false;
+          break;
+        }
+        if (winding != 0) continue;
+        const CGAL::Bbox_3& box = loop_box[loops.find(vl.second)];
+        const double loop_size = std::sqrt(CGAL::square(box.xmax() - box.xmin()) +
+                                           CGAL::square(box.ymax() - box.ymin()) +
+                                           CGAL::square(box.zmax() - box.zmin()));
+        const double allowed = settings_.rim_outside_share * loop_size;
+        if (!(tree.squared_distance(q) <= allowed * allowed)) {
           inside = false;
           break;
         }
       }
-      if (!inside) continue;
+      if (!inside) {
+        ++sc_it;
+        continue;
+      }
       solid_shell[sc.first] = !shell_is_flat(pm_, vpm_, shells[sc.first]);
       caps.emplace(sc.first, std::move(sc.second));
+      sc_it = sheet_caps.erase(sc_it);
+      capped_any = true;
     }
+    return capped_any;
   }
 
   // ---------------------------------------------------------- solidify
