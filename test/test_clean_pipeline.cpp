@@ -28,6 +28,11 @@
 #include <set>
 #include <string>
 
+// A namespace of its own: this file is compiled in one translation unit with
+// other test files (a unity build, CMakeLists.txt).
+namespace {
+namespace clean_pipeline_tests {
+
 namespace {
 
 using namespace mrepair_test;
@@ -1319,3 +1324,6 @@ TEST(Clean_totals, add_totals_keeps_the_fields_outside_the_lists)
   mrepair::internal::add_totals(holes, last);
   EXPECT_EQ(holes.open_holes.size(), 1u);
 }
+
+} // namespace clean_pipeline_tests
+} // namespace

@@ -1,6 +1,7 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of close_gaps() and Gap_closing_sequence (issue 4).
 #include <mrepair/close_gaps.h>
+#include <mrepair/io.h>
 
 #include "fixtures.h"
 
@@ -13,9 +14,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <limits>
 #include <tuple>
 #include <vector>
+
+// A namespace of its own: this file is compiled in one translation unit with
+// other test files (a unity build, CMakeLists.txt).
+namespace {
+namespace close_gaps_tests {
 
 using namespace mrepair_test;
 namespace MP = mrepair::parameters;
@@ -645,12 +654,6 @@ TYPED_TEST(Close_gaps, blade_like_thin_part_closes_without_flips)
 }
 
 #ifdef MREPAIR_CLI
-#include <mrepair/io.h>
-
-#include <cstdio>
-#include <cstdlib>
-#include <fstream>
-
 // The command line: close-gaps on an OFF file; bad input exits non-zero.
 TEST(Close_gaps_cli, closes_a_file_and_refuses_bad_input)
 {
@@ -730,3 +733,6 @@ TYPED_TEST(Close_gaps, bridge_through_a_clean_surface_is_taken_back)
     }
   }
 }
+
+} // namespace close_gaps_tests
+} // namespace

@@ -43,6 +43,11 @@
 #include <type_traits>
 #include <vector>
 
+// A namespace of its own: this file is compiled in one translation unit with
+// other test files (a unity build, CMakeLists.txt).
+namespace {
+namespace exact_kernel_tests {
+
 using namespace mrepair_test;
 namespace MP = mrepair::parameters;
 using mrepair::Status;
@@ -622,3 +627,6 @@ TYPED_TEST(Exact_kernel, classify_input_as_the_inexact_kernel)
   EXPECT_EQ(a.profile, mrepair::Input_profile::scan);
   EXPECT_EQ(b.profile, mrepair::Input_profile::cad);
 }
+
+} // namespace exact_kernel_tests
+} // namespace

@@ -23,6 +23,11 @@
 
 #include <sys/wait.h>
 
+// A namespace of its own: this file is compiled in one translation unit with
+// other test files (a unity build, CMakeLists.txt).
+namespace {
+namespace gap_sequence_tests {
+
 using namespace mrepair_test;
 namespace MP = mrepair::parameters;
 
@@ -449,3 +454,6 @@ TEST(Gap_sequence_cli, region_options_keep_gaps_outside_open)
   EXPECT_EQ(seam_border_edges(m2, 1.96, 2.07), 0u);
 }
 #endif
+
+} // namespace gap_sequence_tests
+} // namespace

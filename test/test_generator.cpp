@@ -20,6 +20,11 @@
 #include <string>
 #include <unistd.h>
 
+// A namespace of its own: this file is compiled in one translation unit with
+// other test files (a unity build, CMakeLists.txt).
+namespace {
+namespace generator_tests {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -548,3 +553,8 @@ TEST(Generator, BundledCadSampleMatchesItsManifest)
 }
 
 }  // namespace
+
+} // namespace generator_tests
+} // namespace
+
+#undef REQUIRE_GENERATOR  // the other files of the unity build do not see it

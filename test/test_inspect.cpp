@@ -31,6 +31,11 @@
 #include <set>
 #include <string>
 
+// A namespace of its own: this file is compiled in one translation unit with
+// other test files (a unity build, CMakeLists.txt).
+namespace {
+namespace inspect_tests {
+
 using namespace mrepair_test;
 namespace MP = mrepair::parameters;
 using mrepair::Inspection_report;
@@ -1441,3 +1446,6 @@ TYPED_TEST(Compare_to_reference, bad_input_gets_a_status)
   EXPECT_EQ(mrepair::compare_to_reference(c.points, nan_out.points, nan_out.polygons).status,
             Status::non_finite_input);
 }
+
+} // namespace inspect_tests
+} // namespace

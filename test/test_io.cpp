@@ -25,6 +25,11 @@
 #include <string>
 #include <unistd.h>
 
+// A namespace of its own: this file is compiled in one translation unit with
+// other test files (a unity build, CMakeLists.txt).
+namespace {
+namespace io_tests {
+
 namespace {
 
 using namespace mrepair_test;
@@ -1528,6 +1533,7 @@ TEST(Cli_memory, large_blocks_come_from_the_heap_only_while_asked)
   }
 }
 #endif
+#undef MREPAIR_TEST_OWN_ALLOCATOR  // the other files of the unity build do not see it
 
 // ---- the CLI helpers (tools/cli_io.h) -------------------------------------------
 
@@ -2028,4 +2034,7 @@ TEST(Io_issue_18, mesh_check_names_the_first_defect_whatever_the_blocks)
   EXPECT_GE(std::stoul(second.substr(at + 6)), 16384u) << second;
 }
 
+} // namespace
+
+} // namespace io_tests
 } // namespace

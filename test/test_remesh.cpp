@@ -23,6 +23,11 @@
 #include <random>
 #include <set>
 
+// A namespace of its own: this file is compiled in one translation unit with
+// other test files (a unity build, CMakeLists.txt).
+namespace {
+namespace remesh_tests {
+
 using namespace mrepair_test;
 namespace MP = mrepair::parameters;
 
@@ -657,3 +662,6 @@ TEST(Remesh_issue_17, reference_tree_built_on_first_use_gives_the_closest_point)
     EXPECT_NEAR(I::distance(by_descent[i], q[i]), d, 1e-9) << i;
   }
 }
+
+} // namespace remesh_tests
+} // namespace

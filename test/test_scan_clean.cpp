@@ -22,6 +22,11 @@
 #include <thread>
 #include <type_traits>
 
+// A namespace of its own: this file is compiled in one translation unit with
+// other test files (a unity build, CMakeLists.txt).
+namespace {
+namespace scan_clean_tests {
+
 using namespace mrepair_test;
 
 namespace {
@@ -831,3 +836,6 @@ TYPED_TEST(Scan_clean, cancellation)
   EXPECT_EQ(rr.vertices_relaxed, 0u);
   EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
 }
+
+} // namespace scan_clean_tests
+} // namespace

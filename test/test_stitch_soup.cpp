@@ -27,6 +27,11 @@
 #include <string>
 #include <vector>
 
+// A namespace of its own: this file is compiled in one translation unit with
+// other test files (a unity build, CMakeLists.txt).
+namespace {
+namespace stitch_soup_tests {
+
 namespace PMP = CGAL::Polygon_mesh_processing;
 namespace MP = mrepair::parameters;
 using namespace mrepair_test;
@@ -856,3 +861,6 @@ TEST(Stitch_soup_cli, CrackedCubeFileBecomesClosed)
   EXPECT_NE(std::system(bad.c_str()), 0);
 }
 #endif
+
+} // namespace stitch_soup_tests
+} // namespace
