@@ -195,7 +195,9 @@ public:
   // 0: f and g do not intersect; 1: they do; 2: they do, but only where
   // they touch at coincident vertices of their own (the copies of a split
   // non-manifold vertex, duplicate points): taken as one shared vertex or
-  // edge, the coincident corners would leave the two faces apart.
+  // edge, the coincident corners would leave the two faces apart. The
+  // shared vertex or edge may be part index, part copy: faces on one vertex
+  // and on coincident copies of the edge's other end touch along that edge.
   int contact(Inspect_index f, Inspect_index g) const
   {
     const Inspect_index* fv = &a_.corner_v[a_.face_off[f]];
@@ -213,7 +215,20 @@ public:
     const Point gp[3] = {point(gv[0]), point(gv[1]), point(gv[2])};
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
-        if (fv[i] == gv[j]) return intersect_beside_shared_vertex(fp, i, gp, j);
+        if (fv[i] == gv[j]) {
+          if (!intersect_beside_shared_vertex(fp, i, gp, j)) return 0;
+          // a second corner in common by position only (the copy of a vertex
+          // where a solid touches itself along an edge, made when its fans
+          // were split): the faces touch along that edge, as two faces on
+          // copies of both its ends do (below)
+          for (int k = 1; k < 3; ++k)
+            for (int l = 1; l < 3; ++l) {
+              const int i2 = (i + k) % 3, j2 = (j + l) % 3;
+              if (fp[i2] == gp[j2])
+                return overlap_across_shared_edge(fp[i], fp[i2], fp[3 - i - i2], gp[3 - j - j2]) ? 1 : 2;
+            }
+          return 1;
+        }
     if (!disjoint_triangles_intersect(fp, gp)) return 0;
     int same = 0, fi[2] = {0, 0}, gj[2] = {0, 0};
     for (int i = 0; i < 3; ++i)
