@@ -698,6 +698,13 @@ TYPED_TEST(Inspect, pairs_touching_at_coincident_vertices)
   expect_one_pair(e, 1, "edge copies apart");
   e.points[5] = Point(0.5, 0.5, 0);
   expect_one_pair(e, 0, "edge copies overlapping");
+  // a fan about vertex 0 that turns back onto its first edge: its last face
+  // shares vertex 0 with the first and has a copy of the first edge's other
+  // end (as where a solid touches itself along an edge): touching along it
+  Soup f;
+  f.points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0.3), Point(1, 0, 0), Point(-1, 0, 0.2)};
+  f.polygons = {{0, 1, 2}, {0, 2, 4}, {0, 4, 3}};
+  expect_one_pair(f, 1, "vertex shared, edge end a copy");
 }
 
 TYPED_TEST(Inspect, t_junction_between_patches)
