@@ -21,6 +21,9 @@
 #include <mrepair/status.h>
 #include <mrepair/visitors.h>
 
+#include <CGAL/Polygon_mesh_processing/bbox.h>
+
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <string>
@@ -60,6 +63,22 @@ namespace mrepair {
 ///     of at most that many edges that are narrower than tolerance / 2 (twice
 ///     their area over their perimeter): cracks whose contractions all flip a
 ///     sliver face; nothing moves (0: no bridging)
+///   - `gap_bridge_first(bool)` (false; `repair()` sets it): bridge those narrow
+///     loops before any contraction too, when they are wider than 1e-6 x the
+///     bounding-box diagonal, so that no input vertex of a crack moves: a
+///     contraction moves a vertex by half the gap, which loses it by
+///     `compare_to_reference()`'s measure (a vertex-vertex contraction of two
+///     boundaries 0.0018 apart moved each vertex 0.0009, 85x that tolerance).
+///     Two sides of a crack whose border edges face each other (both ends
+///     mutual nearest border vertices) are joined by a strip of quads first.
+///     Narrower loops (T-junctions, touching seams) are left to the
+///     contractions, which then keep input positions: a vertex-edge
+///     contraction leaves the vertex in place and bends the edge to it, none
+///     moves a vertex farther than 1e-6 x the diagonal (that crack stays
+///     open for the bridges and the hole filling), a border edge longer than
+///     that is not collapsed, and `gap_snap_distance` defaults to that length.
+///     Strips and bridges are skipped with a `gap_vertex_selection` or
+///     `gap_face_selection` region.
 /// \pre `CGAL::is_valid_polygon_mesh(tm)` (checked in debug builds only)
 /// \return `Gap_closing_result`; `tm` untouched when `status` reports bad input
 ///   (`empty_input`, `non_finite_input`, `invalid_mesh`, `invalid_parameter`;
@@ -77,17 +96,51 @@ Gap_closing_result close_gaps(TriangleMesh& tm, double tolerance,
   const bool split = internal::get_or(np, internal_np::gap_split_pinched_vertices, true);
   const std::size_t bridge = internal::get_or(np, internal_np::gap_bridge_max_edges, std::size_t(400));
 
-  std::unique_ptr<Gap_closing_sequence<TriangleMesh, VPM>> seq;
-  {
-    internal::Phase_scope<decltype(visitor)> phase(visitor, "pairing");
-    seq.reset(new Gap_closing_sequence<TriangleMesh, VPM>(tm, tolerance, np));
-  }
-  if (seq->status() != Status::ok) return seq->result();
-  const bool cancelled = internal::step_to_limit(*seq, visitor, max_ops);
-  Gap_closing_result r = seq->result();
+  using CGAL::parameters::is_default_parameter;
+  constexpr bool whole_mesh = is_default_parameter<NamedParameters, internal_np::gap_vertex_selection_t>::value &&
+                              is_default_parameter<NamedParameters, internal_np::gap_face_selection_t>::value;
+  const bool bridge_first = whole_mesh && internal::get_or(np, internal_np::gap_bridge_first, false);
   VPM vpm = CGAL::parameters::choose_parameter(
       CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point),
       get_property_map(CGAL::vertex_point, tm));
+
+  std::unique_ptr<Gap_closing_sequence<TriangleMesh, VPM>> seq;
+  auto pair_boundaries = [&]() {
+    internal::Phase_scope<decltype(visitor)> phase(visitor, "pairing");
+    seq.reset(new Gap_closing_sequence<TriangleMesh, VPM>(tm, tolerance, np));
+  };
+  pair_boundaries();  // also checks the input and makes the tolerance absolute
+  if (seq->status() != Status::ok) return seq->result();
+  Gap_closing_result first;  // the bridges before the contractions
+  if (bridge_first && seq->result().boundary_edges_before > 0) {
+    const double absolute = seq->result().tolerance;
+    first.boundary_edges_before = seq->result().boundary_edges_before;
+    first.boundary_loops_before = seq->result().boundary_loops_before;
+    seq.reset();
+    const CGAL::Bbox_3 box = CGAL::Polygon_mesh_processing::bbox(tm, CGAL::parameters::vertex_point_map(vpm));
+    const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                                      CGAL::square(box.zmax() - box.zmin()));
+    internal::zip_facing_border_edges(tm, vpm, absolute, 1e-6 * diagonal, first);
+    if (bridge >= 3) internal::bridge_narrow_loops(tm, vpm, absolute, bridge, visitor, first, 1e-6 * diagonal);
+    if (first.status != Status::ok) {
+      first.tolerance = absolute;
+      return first;
+    }
+    pair_boundaries();
+    if (seq->status() != Status::ok) return seq->result();
+  }
+  const bool cancelled = internal::step_to_limit(*seq, visitor, max_ops);
+  Gap_closing_result r = seq->result();
+  if (first.loops_bridged > 0 || first.bridges_rejected_intersecting > 0 || first.seam_faces > 0) {
+    r.seam_edges_zipped = first.seam_edges_zipped;
+    r.seam_faces = first.seam_faces;
+    r.boundary_edges_before = first.boundary_edges_before;
+    r.boundary_loops_before = first.boundary_loops_before;
+    r.loops_bridged += first.loops_bridged;
+    r.loops_bridged_first = first.loops_bridged;
+    r.bridge_faces += first.bridge_faces;
+    r.bridges_rejected_intersecting += first.bridges_rejected_intersecting;
+  }
   if (split && r.pinched_vertices > 0 && r.status == Status::ok)
     internal::split_pinched_vertices(tm, vpm, visitor, r);
   // a pinched vertex left (keep-pinched) would make a bridge non-manifold

@@ -67,7 +67,10 @@ struct Gap_closing_result
   std::size_t boundary_loops_after = 0;
   std::size_t pinched_vertices = 0;          ///< boundary vertices with several fans (left in the mesh)
   std::size_t pinched_vertices_split = 0;    ///< vertices created by splitting pinched vertices
-  std::size_t loops_bridged = 0;             ///< narrow loops left by the contractions, filled (nothing moved)
+  std::size_t loops_bridged = 0;             ///< narrow loops filled (nothing moved): left by the contractions, or before them
+  std::size_t loops_bridged_first = 0;       ///< of which bridged before any contraction (`gap_bridge_first`)
+  std::size_t seam_edges_zipped = 0;         ///< pairs of facing border edges joined by a quad before the contractions (`gap_bridge_first`)
+  std::size_t seam_faces = 0;                ///< faces of those quads (nothing moved)
   std::size_t bridge_faces = 0;              ///< faces added by those bridges
   std::size_t bridges_rejected_intersecting = 0;  ///< bridges taken back: they passed through a clean stretch of the surface
   double max_displacement = 0;               ///< largest distance a vertex moved from its input position
@@ -97,6 +100,9 @@ struct Gap_closing_result
     r.add("pinched_vertices", pinched_vertices);
     r.add("pinched_vertices_split", pinched_vertices_split);
     r.add("loops_bridged", loops_bridged);
+    r.add("loops_bridged_first", loops_bridged_first);
+    r.add("seam_edges_zipped", seam_edges_zipped);
+    r.add("seam_faces", seam_faces);
     r.add("bridge_faces", bridge_faces);
     r.add("bridges_rejected_intersecting", bridges_rejected_intersecting);
     r.add("max_displacement", max_displacement);

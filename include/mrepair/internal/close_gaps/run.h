@@ -15,10 +15,12 @@
 #include <mrepair/visitors.h>
 
 #include <CGAL/Polygon_mesh_processing/manifoldness.h>
+#include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/version.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -72,6 +74,130 @@ void split_pinched_vertices(TriangleMesh& tm, const VertexPointMap& vpm, Visitor
 }
 
 
+/// joins the two sides of a crack with a strip of triangles, nothing moved:
+/// a border edge a->b whose ends have, as mutual nearest border vertices
+/// within `tolerance` (neighbours along an edge excluded), the ends of a
+/// border edge c->d of the other side (d beside a, c beside b) gets the quad
+/// a-b-c-d, split along its shorter diagonal. Only pairs farther apart than
+/// `min_distance` (a contraction would move them by more than the reference
+/// tolerance, compare_to_reference.h); a quad whose triangles would fold
+/// against the faces they join (more than 90 degrees) or degenerate is left
+/// to the contractions. Returns the faces added (`r.seam_faces`,
+/// `r.seam_edges_zipped`). Border vertices are found in a hash grid of
+/// `tolerance` cells: O(border) expected.
+template <class TriangleMesh, class VertexPointMap>
+void zip_facing_border_edges(TriangleMesh& tm, const VertexPointMap& vpm, double tolerance,
+                             double min_distance, Gap_closing_result& r)
+{
+  using GT = boost::graph_traits<TriangleMesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  if (!(tolerance > 0)) return;
+  std::vector<halfedge_descriptor> border;
+  border_halfedges(tm, border);
+  // border vertices (a pinched one, with several border halfedges, is left out:
+  // its fans are not one side of one crack)
+  std::map<vertex_descriptor, halfedge_descriptor> out_of;  // the border halfedge leaving each vertex
+  std::set<vertex_descriptor> pinched;
+  for (halfedge_descriptor h : border)
+    if (!out_of.emplace(source(h, tm), h).second) pinched.insert(source(h, tm));
+  for (vertex_descriptor v : pinched) out_of.erase(v);
+  if (out_of.size() < 4) return;
+  using Cell = std::array<long long, 3>;
+  auto cell_of = [&](const Vec3& p) {
+    return Cell{{(long long)std::floor(p[0] / tolerance), (long long)std::floor(p[1] / tolerance),
+                 (long long)std::floor(p[2] / tolerance)}};
+  };
+  std::map<Cell, std::vector<vertex_descriptor>> grid;
+  for (const auto& vh : out_of) {
+    const Vec3 p = point(vpm, vh.first);
+    if (!is_finite(p) || std::abs(p[0] / tolerance) > 1e15 || std::abs(p[1] / tolerance) > 1e15 ||
+        std::abs(p[2] / tolerance) > 1e15)
+      return;  // cells out of range: no zipping
+    grid[cell_of(p)].push_back(vh.first);
+  }
+  auto adjacent = [&](vertex_descriptor a, vertex_descriptor b) { return halfedge(a, b, tm).second; };
+  // nearest border vertex within the tolerance, not a neighbour
+  std::map<vertex_descriptor, vertex_descriptor> nearest;
+  for (const auto& vh : out_of) {
+    const vertex_descriptor v = vh.first;
+    const Vec3 p = point(vpm, v);
+    const Cell c = cell_of(p);
+    double best = tolerance;
+    vertex_descriptor found = GT::null_vertex();
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          auto it = grid.find(Cell{{c[0] + dx, c[1] + dy, c[2] + dz}});
+          if (it == grid.end()) continue;
+          for (vertex_descriptor w : it->second) {
+            if (w == v) continue;
+            const double d = distance(p, point(vpm, w));
+            if (d < best && !adjacent(v, w)) {
+              best = d;
+              found = w;
+            }
+          }
+        }
+    if (found != GT::null_vertex()) nearest.emplace(v, found);
+  }
+  auto partner = [&](vertex_descriptor v) {
+    auto it = nearest.find(v);
+    if (it == nearest.end()) return GT::null_vertex();
+    auto back = nearest.find(it->second);
+    return back != nearest.end() && back->second == v ? it->second : GT::null_vertex();
+  };
+  auto face_normal = [&](halfedge_descriptor h) {
+    return triangle_normal(point(vpm, source(h, tm)), point(vpm, target(h, tm)),
+                           point(vpm, target(next(h, tm), tm)));
+  };
+  for (halfedge_descriptor h : border) {
+    if (!is_border(h, tm)) continue;  // taken by an earlier quad
+    const vertex_descriptor a = source(h, tm), b = target(h, tm);
+    const vertex_descriptor d = partner(a), c = partner(b);
+    if (d == GT::null_vertex() || c == GT::null_vertex() || c == d || c == a || d == b) continue;
+    const auto cd = halfedge(c, d, tm);
+    if (!cd.second || !is_border(cd.first, tm) || pinched.count(c) || pinched.count(d)) continue;
+    const Vec3 pa = point(vpm, a), pb = point(vpm, b), pc = point(vpm, c), pd = point(vpm, d);
+    if (!(distance(pa, pd) > min_distance || distance(pb, pc) > min_distance)) continue;
+    // split along the shorter diagonal
+    std::array<std::array<vertex_descriptor, 3>, 2> quad;
+    std::array<std::array<Vec3, 3>, 2> corners;
+    if (distance(pa, pc) <= distance(pb, pd)) {
+      quad = {{{{a, b, c}}, {{a, c, d}}}};
+      corners = {{{{pa, pb, pc}}, {{pa, pc, pd}}}};
+    } else {
+      quad = {{{{a, b, d}}, {{b, c, d}}}};
+      corners = {{{{pa, pb, pd}}, {{pb, pc, pd}}}};
+    }
+    // the faces the quad joins: across a-b and across c-d
+    const Vec3 n_ab = face_normal(opposite(h, tm)), n_cd = face_normal(opposite(cd.first, tm));
+    bool ok = true;
+    for (const auto& t : corners) {
+      const Vec3 n = triangle_normal(t[0], t[1], t[2]);
+      const double l2 = std::max({squared_norm(sub(t[0], t[1])), squared_norm(sub(t[1], t[2])),
+                                  squared_norm(sub(t[2], t[0]))});
+      if (!(dot(n, n) > 1e-24 * l2 * l2) || !(dot(n, n_ab) > 0) || !(dot(n, n_cd) > 0)) ok = false;
+    }
+    if (!ok) continue;
+    // the second triangle is added only when the first was
+    if (!CGAL::Euler::can_add_face(quad[0], tm)) continue;
+    const auto f0 = CGAL::Euler::add_face(quad[0], tm);
+    if (f0 == GT::null_face()) continue;
+    if (!CGAL::Euler::can_add_face(quad[1], tm)) {
+      CGAL::Euler::remove_face(halfedge(f0, tm), tm);
+      continue;
+    }
+    const auto f1 = CGAL::Euler::add_face(quad[1], tm);
+    if (f1 == GT::null_face()) {
+      CGAL::Euler::remove_face(halfedge(f0, tm), tm);
+      continue;
+    }
+    ++r.seam_edges_zipped;
+    r.seam_faces += 2;
+  }
+}
+
 /// bridges the boundary loops left narrower than `tolerance` with triangles.
 /// A loop of at most `max_edges` edges is narrow when twice its vector area
 /// over its perimeter (the width of a strip) is at most tolerance / 2: the
@@ -81,10 +207,13 @@ void split_pinched_vertices(TriangleMesh& tm, const VertexPointMap& vpm, Visitor
 /// A bridge goes in through the local operations, as a hole patch does, and
 /// is taken back when it would make a degenerate face or pass through a
 /// clean stretch of the surface (internal/patch_guard.h; counted in
-/// `bridges_rejected_intersecting`).
+/// `bridges_rejected_intersecting`). Loops not wider than `min_width` are
+/// left alone (the bridge before the contractions leaves them to the
+/// contractions, which move their vertices by less than that).
 template <class TriangleMesh, class VertexPointMap, class VisitorHandle>
 void bridge_narrow_loops(TriangleMesh& tm, const VertexPointMap& vpm, double tolerance,
-                         std::size_t max_edges, VisitorHandle& visitor, Gap_closing_result& r)
+                         std::size_t max_edges, VisitorHandle& visitor, Gap_closing_result& r,
+                         double min_width = 0.)
 {
   using GT = boost::graph_traits<TriangleMesh>;
   using vertex_descriptor = typename GT::vertex_descriptor;
@@ -115,7 +244,8 @@ void bridge_narrow_loops(TriangleMesh& tm, const VertexPointMap& vpm, double tol
         perimeter += distance(a, b);
       }
       // |area| is twice the vector area
-      if (perimeter > 0 && norm(area) / perimeter <= 0.5 * tolerance) loops.push_back(h);
+      const double width = perimeter > 0 ? norm(area) / perimeter : 0.;
+      if (perimeter > 0 && width <= 0.5 * tolerance && width > min_width) loops.push_back(h);
     });
     if (!closed) {  // a border walk hit its bound: no bridge on a broken border
       r.status = Status::invalid_mesh;

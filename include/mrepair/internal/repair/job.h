@@ -239,8 +239,11 @@ Repair_result run_repair_job(std::vector<Point>& points, std::vector<Polygon>& p
     const std::size_t f0 = face_count(out);
     {
       Phase_scope<Handle> phase(visitor, "close_gaps");
-      g = gap > 0. ? Stages::close_gaps(out, gap, np.visitor(std::ref(forward)))
-                   : Stages::close_gaps_automatic(out, np.visitor(std::ref(forward)));
+      // a crack wider than the reference tolerance is bridged, not contracted:
+      // the job keeps every input vertex where it was (close_gaps.h)
+      const auto gap_np = MP::gap_bridge_first(get_or(np, internal_np::gap_bridge_first, true),
+                                                       np.visitor(std::ref(forward)));
+      g = gap > 0. ? Stages::close_gaps(out, gap, gap_np) : Stages::close_gaps_automatic(out, gap_np);
     }
     result.gaps_closed = true;
     result.gaps = g;
