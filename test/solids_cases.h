@@ -783,6 +783,42 @@ TYPED_TEST(Solids, sheet_through_a_box_is_left_alone)
   expect_no_point_lost(m, s.points);
 }
 
+// A print model cut in two whose halves sit a little apart (Slic3r's Spider:
+// two rims 0.0018 apart along a wall): the repair's gap closing joins the
+// facing rims with a strip of quads instead of merging the rim vertices
+// pairwise, which moved each by half the crack and lost all of them (the
+// reference tolerance is 1e-6 of the diagonal). The upper hemisphere of a
+// sphere keeps the equator, the lower one has a copy 0.002 lower.
+TYPED_TEST(Solids, sphere_cut_in_two_a_crack_apart_is_joined_without_moving_a_point)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const std::size_t nlat = 16, nlon = 32;
+  Soup s = uv_sphere(nlat, nlon, 1.0);
+  std::vector<std::size_t> copy(s.points.size());
+  for (std::size_t j = 0; j < nlon; ++j) {
+    const std::size_t v = uv_index(nlat, nlon, nlat / 2, j);
+    copy[v] = s.points.size();
+    s.points.emplace_back(s.points[v].x(), s.points[v].y(), s.points[v].z() - 0.002);
+  }
+  for (Polygon& p : s.polygons) {
+    double z = 0;
+    for (std::size_t i : p) z += s.points[i].z();
+    if (z >= 0) continue;  // a face of the upper hemisphere
+    for (std::size_t& i : p)
+      if (copy[i]) i = copy[i];
+  }
+  const std::vector<Point> input = s.points;
+  Mesh m;
+  const mrepair::Repair_result r = mrepair::repair_polygon_soup(s.points, s.polygons, m);
+  ASSERT_TRUE(mrepair::succeeded(r.status)) << r.message;
+  EXPECT_TRUE(r.gaps_closed);
+  EXPECT_EQ(r.gaps.seam_edges_zipped, nlon);
+  EXPECT_EQ(r.gaps.max_displacement, 0.);
+  expect_sound_surface(m, true);
+  expect_no_point_lost(m, input);
+  EXPECT_EQ(components(m), 1u);
+}
+
 // Bad input gets a status and leaves the mesh as it was: no face, a NaN
 // corner, a quad (not a triangle mesh).
 TYPED_TEST(Solids, bad_input_gets_a_status_and_stays_untouched)
