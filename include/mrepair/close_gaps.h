@@ -63,22 +63,17 @@ namespace mrepair {
 ///     of at most that many edges that are narrower than tolerance / 2 (twice
 ///     their area over their perimeter): cracks whose contractions all flip a
 ///     sliver face; nothing moves (0: no bridging)
-///   - `gap_bridge_first(bool)` (false; `repair()` sets it): bridge those narrow
-///     loops before any contraction too, when they are wider than 1e-6 x the
-///     bounding-box diagonal, so that no input vertex of a crack moves: a
-///     contraction moves a vertex by half the gap, which loses it by
-///     `compare_to_reference()`'s measure (a vertex-vertex contraction of two
-///     boundaries 0.0018 apart moved each vertex 0.0009, 85x that tolerance).
-///     Two sides of a crack whose border edges face each other (both ends
-///     mutual nearest border vertices) are joined by a strip of quads first.
-///     Narrower loops (T-junctions, touching seams) are left to the
-///     contractions, which then keep input positions: a vertex-edge
-///     contraction leaves the vertex in place and bends the edge to it, none
-///     moves a vertex farther than 1e-6 x the diagonal (that crack stays
-///     open for the bridges and the hole filling), a border edge longer than
-///     that is not collapsed, and `gap_snap_distance` defaults to that length.
-///     Strips and bridges are skipped with a `gap_vertex_selection` or
-///     `gap_face_selection` region.
+///   - `gap_bridge_first(bool)` (false; `repair()` sets it): before any
+///     contraction, join the two sides of a crack whose border edges face
+///     each other with a strip: a border edge a-b whose ends have, as mutual
+///     nearest border vertices farther apart than 1e-6 x the bounding-box
+///     diagonal, the ends d, c of a border edge c-d gets the quad a-b-c-d,
+///     when the quad continues the surface (its triangles and both sides'
+///     faces within 45 degrees). Nothing moves there: a vertex-vertex contraction
+///     moves both vertices by half the gap, which loses them by
+///     `compare_to_reference()`'s measure (two rims 0.0018 apart: each vertex
+///     0.0009 off, 85x that tolerance). Skipped with a `gap_vertex_selection`
+///     or `gap_face_selection` region.
 /// \pre `CGAL::is_valid_polygon_mesh(tm)` (checked in debug builds only)
 /// \return `Gap_closing_result`; `tm` untouched when `status` reports bad input
 ///   (`empty_input`, `non_finite_input`, `invalid_mesh`, `invalid_parameter`;
@@ -111,35 +106,26 @@ Gap_closing_result close_gaps(TriangleMesh& tm, double tolerance,
   };
   pair_boundaries();  // also checks the input and makes the tolerance absolute
   if (seq->status() != Status::ok) return seq->result();
-  Gap_closing_result first;  // the bridges before the contractions
+  Gap_closing_result first;  // the strips before the contractions
   if (bridge_first && seq->result().boundary_edges_before > 0) {
     const double absolute = seq->result().tolerance;
-    first.boundary_edges_before = seq->result().boundary_edges_before;
-    first.boundary_loops_before = seq->result().boundary_loops_before;
-    seq.reset();
     const CGAL::Bbox_3 box = CGAL::Polygon_mesh_processing::bbox(tm, CGAL::parameters::vertex_point_map(vpm));
     const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
                                       CGAL::square(box.zmax() - box.zmin()));
+    first.boundary_edges_before = seq->result().boundary_edges_before;
+    first.boundary_loops_before = seq->result().boundary_loops_before;
+    seq.reset();
     internal::zip_facing_border_edges(tm, vpm, absolute, 1e-6 * diagonal, first);
-    if (bridge >= 3) internal::bridge_narrow_loops(tm, vpm, absolute, bridge, visitor, first, 1e-6 * diagonal);
-    if (first.status != Status::ok) {
-      first.tolerance = absolute;
-      return first;
-    }
     pair_boundaries();
     if (seq->status() != Status::ok) return seq->result();
   }
   const bool cancelled = internal::step_to_limit(*seq, visitor, max_ops);
   Gap_closing_result r = seq->result();
-  if (first.loops_bridged > 0 || first.bridges_rejected_intersecting > 0 || first.seam_faces > 0) {
+  if (first.seam_faces > 0) {
     r.seam_edges_zipped = first.seam_edges_zipped;
     r.seam_faces = first.seam_faces;
     r.boundary_edges_before = first.boundary_edges_before;
     r.boundary_loops_before = first.boundary_loops_before;
-    r.loops_bridged += first.loops_bridged;
-    r.loops_bridged_first = first.loops_bridged;
-    r.bridge_faces += first.bridge_faces;
-    r.bridges_rejected_intersecting += first.bridges_rejected_intersecting;
   }
   if (split && r.pinched_vertices > 0 && r.status == Status::ok)
     internal::split_pinched_vertices(tm, vpm, visitor, r);

@@ -67,8 +67,7 @@ struct Gap_closing_result
   std::size_t boundary_loops_after = 0;
   std::size_t pinched_vertices = 0;          ///< boundary vertices with several fans (left in the mesh)
   std::size_t pinched_vertices_split = 0;    ///< vertices created by splitting pinched vertices
-  std::size_t loops_bridged = 0;             ///< narrow loops filled (nothing moved): left by the contractions, or before them
-  std::size_t loops_bridged_first = 0;       ///< of which bridged before any contraction (`gap_bridge_first`)
+  std::size_t loops_bridged = 0;             ///< narrow loops left by the contractions, filled (nothing moved)
   std::size_t seam_edges_zipped = 0;         ///< pairs of facing border edges joined by a quad before the contractions (`gap_bridge_first`)
   std::size_t seam_faces = 0;                ///< faces of those quads (nothing moved)
   std::size_t bridge_faces = 0;              ///< faces added by those bridges
@@ -100,7 +99,6 @@ struct Gap_closing_result
     r.add("pinched_vertices", pinched_vertices);
     r.add("pinched_vertices_split", pinched_vertices_split);
     r.add("loops_bridged", loops_bridged);
-    r.add("loops_bridged_first", loops_bridged_first);
     r.add("seam_edges_zipped", seam_edges_zipped);
     r.add("seam_faces", seam_faces);
     r.add("bridge_faces", bridge_faces);

@@ -180,7 +180,6 @@ public:
       closer_.refuse(Status::invalid_parameter, "tolerance must be finite and >= 0, gap_lambda in [0,1]");
       return;
     }
-    closer_.keep_input_positions(internal::get_or(np, inp::gap_bridge_first, false));
     // the region: a vertex is in it when selected, or when one of its faces is
     // (the boundary vertices left out go into the region fingerprint: 0 when none is)
     auto note = [this](vertex_descriptor v, bool in) {

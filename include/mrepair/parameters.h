@@ -166,7 +166,7 @@ MREPAIR_ADD_NAMED_PARAMETER(gap_max_operations)         // std::size_t cap on co
 MREPAIR_ADD_NAMED_PARAMETER(gap_fingerprint_input)      // bool: hash the input so that save() works
 // close_gaps.h
 MREPAIR_ADD_NAMED_PARAMETER(gap_bridge_max_edges)  // std::size_t: narrow loops bridged at the end (400; 0: none)
-MREPAIR_ADD_NAMED_PARAMETER(gap_bridge_first)      // bool: bridge the narrow loops before contracting too (false)
+MREPAIR_ADD_NAMED_PARAMETER(gap_bridge_first)      // bool: join facing crack rims by strips before contracting (false)
 // repair.h
 MREPAIR_ADD_NAMED_PARAMETER(gap_tolerance)                  // close gaps narrower than this (model units; 0)
 MREPAIR_ADD_NAMED_PARAMETER(automatic_gap_tolerance)        // bool: cad inputs get a derived tolerance (true)

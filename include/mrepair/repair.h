@@ -109,9 +109,8 @@ struct Repair_stages
 ///     closed with the tolerance of `estimate_gap_tolerance()`; scans are left
 ///     alone. false: no gap closing unless `gap_tolerance` > 0
 ///   - `gap_bridge_first` (bool, default true here, false in `close_gaps()`):
-///     cracks wider than 1e-6 x the diagonal and narrower than half the gap
-///     tolerance are bridged with triangles before the contractions, so that
-///     their vertices keep their input positions
+///     the facing rims of a crack are joined by a strip of triangles before
+///     the contractions, so that their vertices keep their input positions
 ///   - `merge_epsilon` (double, default 0): soup points closer than this are merged
 ///   - `spike_angle` (degrees, default 100), `max_hole_vertices` (default: the
 ///     profile's, 100 for a scan and 500 for cad; the inspections count

@@ -146,16 +146,6 @@ public:
   {}
 
   /// refuses the input: every step is a no-op.
-  /// keep the input's vertices where they are (`gap_bridge_first`): a
-  /// vertex-edge contraction leaves the vertex in place (the edge bends to
-  /// it), no contraction moves a vertex farther than 1e-6 x the diagonal
-  /// from its input position (such a crack is left to the bridges and the
-  /// hole filling), a border edge longer than that is not collapsed (the
-  /// rung a strip left, close_gaps.h), and the default snap distance is that
-  /// length, not the tolerance.
-  /// Call before start().
-  void keep_input_positions(bool keep) { keep_input_ = keep; }
-
   void refuse(Status status, const std::string& message)
   {
     status_ = status;
@@ -207,11 +197,7 @@ public:
       return;
     }
     max_dist_ = relative ? max_distance * diag : max_distance;
-    kept_edge_length_ = keep_input_ ? 1e-6 * diag : std::numeric_limits<double>::infinity();
-    // keeping input positions, a vertex beside an edge's end is contracted
-    // onto the edge in place rather than merged with that end (unless it is
-    // within the kept length of it)
-    snap_ = snap >= 0 ? snap : keep_input_ ? kept_edge_length_ : max_dist_;
+    snap_ = snap < 0 ? max_dist_ : snap;
 
     // boundary vertices and edges get stable ids
     std::vector<std::uint64_t> edges;
@@ -802,10 +788,9 @@ private:
     c.op.removed_position = get(vpm_, vd_[u]);
     c.moved = w;
     const P3 pu = pos(u), pw = pos(w);
-    if (adjacent && distance(pu, pw) > kept_edge_length_) return displaced;
     P3 to;
     for (int d = 0; d < 3; ++d) to[d] = lambda_ * pu[d] + (1 - lambda_) * pw[d];
-    c.place = keep_input_ ? std::array<P3, 3>{{pu, pw, to}} : std::array<P3, 3>{{to, pu, pw}};
+    c.place = {{to, pu, pw}};
     return done;
   }
 
@@ -828,7 +813,7 @@ private:
     P3 projection, to;
     for (int d = 0; d < 3; ++d) projection[d] = pa[d] + t * (pb[d] - pa[d]);
     for (int d = 0; d < 3; ++d) to[d] = lambda_ * pu[d] + (1 - lambda_) * projection[d];
-    c.place = keep_input_ ? std::array<P3, 3>{{pu, to, projection}} : std::array<P3, 3>{{to, pu, projection}};
+    c.place = {{to, pu, projection}};
     return done;
   }
 
@@ -907,15 +892,6 @@ private:
     }
     const P3 origin = has_orig_[c.moved] ? p3(orig_[c.moved]) : pos(c.moved);
     if (sqdist(cand, origin) > max_dist_ * max_dist_) return displaced;
-    // keeping input positions, no candidate moves a vertex off its input place
-    // (the crack stays open for the bridges and the hole filling instead)
-    if (keep_input_) {
-      const double kept2 = kept_edge_length_ * kept_edge_length_;
-      if (sqdist(cand, origin) > kept2) return displaced;
-      // the vertex a vertex-vertex contraction removes ends at the candidate too
-      const Id gone = c.op.removed_vertex;
-      if (gone != npos && sqdist(cand, has_orig_[gone] ? p3(orig_[gone]) : pos(gone)) > kept2) return displaced;
-    }
     return done;
   }
 
@@ -1145,8 +1121,6 @@ private:
   bool broken_ = false;            // an undo failed, or a bound was hit: no further step
   std::size_t max_ops_ = 0;        // contraction cap (see step())
   double max_dist_ = 0, lambda_ = 0.5, snap_ = 0;
-  bool keep_input_ = false;
-  double kept_edge_length_ = std::numeric_limits<double>::infinity();
 
   std::vector<vertex_descriptor> vd_;  // stable id -> current descriptor
   std::size_t input_boundary_ = 0;     // ids below it: the input boundary vertices

@@ -81,9 +81,9 @@ void split_pinched_vertices(TriangleMesh& tm, const VertexPointMap& vpm, Visitor
 /// a-b-c-d, split along its shorter diagonal. Only pairs farther apart than
 /// `min_distance` (a contraction would move them by more than the reference
 /// tolerance, compare_to_reference.h); a quad whose triangles would fold
-/// against the faces they join (more than 90 degrees) or degenerate is left
-/// to the contractions. Returns the faces added (`r.seam_faces`,
-/// `r.seam_edges_zipped`). Border vertices are found in a hash grid of
+/// against the faces they join (more than 45 degrees) or degenerate is left
+/// to the contractions. Counts the quads in `r.seam_edges_zipped` and their
+/// faces in `r.seam_faces`. Border vertices are found in a hash grid of
 /// `tolerance` cells: O(border) expected.
 template <class TriangleMesh, class VertexPointMap>
 void zip_facing_border_edges(TriangleMesh& tm, const VertexPointMap& vpm, double tolerance,
@@ -171,13 +171,23 @@ void zip_facing_border_edges(TriangleMesh& tm, const VertexPointMap& vpm, double
       corners = {{{{pa, pb, pd}}, {{pb, pc, pd}}}};
     }
     // the faces the quad joins: across a-b and across c-d
-    const Vec3 n_ab = face_normal(opposite(h, tm)), n_cd = face_normal(opposite(cd.first, tm));
-    bool ok = true;
+    // A strip continues the surface: the two sides' faces and the quad's
+    // triangles within 45 degrees of one another. Sides that overlap or fold
+    // (a seam whose vertices were pushed across each other) are left to the
+    // contractions, whose placement checks see the flips.
+    const Vec3 n_ab = normalized(face_normal(opposite(h, tm))), n_cd = normalized(face_normal(opposite(cd.first, tm)));
+    const double cos_limit = std::cos(to_radians(45.));
+    bool ok = dot(n_ab, n_cd) > cos_limit;
     for (const auto& t : corners) {
       const Vec3 n = triangle_normal(t[0], t[1], t[2]);
       const double l2 = std::max({squared_norm(sub(t[0], t[1])), squared_norm(sub(t[1], t[2])),
                                   squared_norm(sub(t[2], t[0]))});
-      if (!(dot(n, n) > 1e-24 * l2 * l2) || !(dot(n, n_ab) > 0) || !(dot(n, n_cd) > 0)) ok = false;
+      if (!(dot(n, n) > 1e-24 * l2 * l2)) {
+        ok = false;
+        break;
+      }
+      const Vec3 u = normalized(n);
+      if (!(dot(u, n_ab) > cos_limit) || !(dot(u, n_cd) > cos_limit)) ok = false;
     }
     if (!ok) continue;
     // the second triangle is added only when the first was
@@ -207,13 +217,10 @@ void zip_facing_border_edges(TriangleMesh& tm, const VertexPointMap& vpm, double
 /// A bridge goes in through the local operations, as a hole patch does, and
 /// is taken back when it would make a degenerate face or pass through a
 /// clean stretch of the surface (internal/patch_guard.h; counted in
-/// `bridges_rejected_intersecting`). Loops not wider than `min_width` are
-/// left alone (the bridge before the contractions leaves them to the
-/// contractions, which move their vertices by less than that).
+/// `bridges_rejected_intersecting`).
 template <class TriangleMesh, class VertexPointMap, class VisitorHandle>
 void bridge_narrow_loops(TriangleMesh& tm, const VertexPointMap& vpm, double tolerance,
-                         std::size_t max_edges, VisitorHandle& visitor, Gap_closing_result& r,
-                         double min_width = 0.)
+                         std::size_t max_edges, VisitorHandle& visitor, Gap_closing_result& r)
 {
   using GT = boost::graph_traits<TriangleMesh>;
   using vertex_descriptor = typename GT::vertex_descriptor;
@@ -244,8 +251,7 @@ void bridge_narrow_loops(TriangleMesh& tm, const VertexPointMap& vpm, double tol
         perimeter += distance(a, b);
       }
       // |area| is twice the vector area
-      const double width = perimeter > 0 ? norm(area) / perimeter : 0.;
-      if (perimeter > 0 && width <= 0.5 * tolerance && width > min_width) loops.push_back(h);
+      if (perimeter > 0 && norm(area) / perimeter <= 0.5 * tolerance) loops.push_back(h);
     });
     if (!closed) {  // a border walk hit its bound: no bridge on a broken border
       r.status = Status::invalid_mesh;

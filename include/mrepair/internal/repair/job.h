@@ -239,10 +239,10 @@ Repair_result run_repair_job(std::vector<Point>& points, std::vector<Polygon>& p
     const std::size_t f0 = face_count(out);
     {
       Phase_scope<Handle> phase(visitor, "close_gaps");
-      // a crack wider than the reference tolerance is bridged, not contracted:
-      // the job keeps every input vertex where it was (close_gaps.h)
+      // the facing rims of a crack are joined by a strip before the
+      // contractions, which would move their vertices (close_gaps.h)
       const auto gap_np = MP::gap_bridge_first(get_or(np, internal_np::gap_bridge_first, true),
-                                                       np.visitor(std::ref(forward)));
+                                               np.visitor(std::ref(forward)));
       g = gap > 0. ? Stages::close_gaps(out, gap, gap_np) : Stages::close_gaps_automatic(out, gap_np);
     }
     result.gaps_closed = true;
