@@ -114,10 +114,11 @@ Gap_closing_result close_gaps(TriangleMesh& tm, double tolerance,
                                       CGAL::square(box.zmax() - box.zmin()));
     first.boundary_edges_before = seq->result().boundary_edges_before;
     first.boundary_loops_before = seq->result().boundary_loops_before;
-    seq.reset();
     internal::zip_facing_border_edges(tm, vpm, absolute, 1e-6 * diagonal, first);
-    pair_boundaries();
-    if (seq->status() != Status::ok) return seq->result();
+    if (first.seam_faces > 0) {  // the border changed: pair it again (else the pairs stand)
+      pair_boundaries();
+      if (seq->status() != Status::ok) return seq->result();
+    }
   }
   const bool cancelled = internal::step_to_limit(*seq, visitor, max_ops);
   Gap_closing_result r = seq->result();
