@@ -139,9 +139,11 @@ public:
   void setup(InPart in_part, IsFeature is_feature, IsFixed is_fixed, bool protect,
              double cos_turn)
   {
-    for (vertex_descriptor v : vertices(tm_)) {
-      const Point& p = get(vpm_, v);
-      put(pos_, v, to_vec3(p));
+    std::vector<vertex_descriptor> vs;
+    vertices_where(vs, [](vertex_descriptor) { return true; });
+    for_each_index(vs.size(), [&](std::size_t i) {
+      const vertex_descriptor v = vs[i];
+      put(pos_, v, to_vec3(get(vpm_, v)));
       put(size_, v, L_);
       put(kind_, v, char(V_FREE));
       put(bnd_, v, char(0));
@@ -149,11 +151,15 @@ public:
       put(ref_, v, -1);
       put(thint_, v, -1);
       put(shint_, v, -1);
-    }
+    });
     for (halfedge_descriptor h : halfedges(tm_)) put(dead_, h, 0u);
-    // line/frozen edge counts per vertex, kept in deg_ for now
-    std::vector<vertex_descriptor> frozen_v;
-    for (edge_descriptor e : edges(tm_)) {
+    // Each edge's flag (the feature test, two face normals, is most of the
+    // setup: over the edges at once with threads), then, in order, what the
+    // flags say of the vertices: line/frozen edge counts, kept in deg_ for now.
+    std::vector<edge_descriptor> es;
+    edges_where(es, [](edge_descriptor) { return true; });
+    for_each_index(es.size(), [&](std::size_t i) {
+      const edge_descriptor e = es[i];
       halfedge_descriptor h = halfedge(e, tm_), o = opposite(h, tm_);
       face_descriptor f1 = face(h, tm_), f2 = face(o, tm_);
       bool n1 = f1 == GT::null_face(), n2 = f2 == GT::null_face();
@@ -168,6 +174,11 @@ public:
       else if (is_feature(e))
         fl = char(FEATURE | (protect ? FROZEN : LINE));
       put(flag_, e, fl);
+    });
+    for (edge_descriptor e : es) {
+      const char fl = get(flag_, e);
+      halfedge_descriptor h = halfedge(e, tm_), o = opposite(h, tm_);
+      const bool n1 = is_border(h, tm_), n2 = is_border(o, tm_);
       vertex_descriptor a = source(h, tm_), b = target(h, tm_);
       if (n1 || n2) { put(bnd_, a, char(1)); put(bnd_, b, char(1)); }
       if (fl & FEATURE) ++feature_edges;
@@ -270,6 +281,50 @@ public:
   void finish(bool project) { optimize_bad_vertices(30., project, 4); }
 
   // ---------------------------------------------------------------- helpers
+  // The passes below edit the mesh one element at a time, but each starts
+  // with a scan of the whole mesh for the few elements it works on (a few
+  // hundred of 1.5M edges on a mesh near its target length): on Surface_mesh
+  // with threads that scan runs over the index slots in chunks, in parallel,
+  // and gives the list the loop over edges(tm_) / faces(tm_) gives, in its order.
+  template <typename Desc, typename Range, typename Keep>
+  void collect(const Range& range, std::size_t slots, std::vector<Desc>& out, const Keep& keep) const
+  {
+    out.clear();
+    if constexpr (parallel_) {
+      if (slots > 20000) {
+        auto parts = chunked_over_slots<Desc, std::vector<Desc>>(
+            tm_, slots, [&](Desc d, std::vector<Desc>& part) {
+              if (!tm_.is_removed(d) && keep(d)) part.push_back(d);
+            });
+        for (const std::vector<Desc>& part : parts) out.insert(out.end(), part.begin(), part.end());
+        return;
+      }
+    }
+    for (Desc d : range)
+      if (keep(d)) out.push_back(d);
+  }
+  template <typename Keep>
+  void edges_where(std::vector<edge_descriptor>& out, const Keep& keep) const
+  {
+    std::size_t slots = 0;
+    if constexpr (parallel_) slots = tm_.number_of_edges() + tm_.number_of_removed_edges();
+    collect(edges(tm_), slots, out, keep);
+  }
+  template <typename Keep>
+  void faces_where(std::vector<face_descriptor>& out, const Keep& keep) const
+  {
+    std::size_t slots = 0;
+    if constexpr (parallel_) slots = tm_.number_of_faces() + tm_.number_of_removed_faces();
+    collect(faces(tm_), slots, out, keep);
+  }
+  template <typename Keep>
+  void vertices_where(std::vector<vertex_descriptor>& out, const Keep& keep) const
+  {
+    std::size_t slots = 0;
+    if constexpr (parallel_) slots = tm_.number_of_vertices() + tm_.number_of_removed_vertices();
+    collect(vertices(tm_), slots, out, keep);
+  }
+
   double tsize(vertex_descriptor a, vertex_descriptor b) const
   {
     return uniform_ ? L_ : std::min(get(size_, a), get(size_, b));
@@ -353,20 +408,20 @@ public:
 
   void split_long_edges()
   {
-    std::vector<halfedge_descriptor> cand;
+    std::vector<edge_descriptor> cand;
     std::size_t held = 0;
     for (int pass = 0; pass < 10; ++pass) {  // bounded: frozen long edges keep splitting their neighbours
-      cand.clear();
-      for (edge_descriptor e : edges(tm_)) {
-        if (get(flag_, e) & FROZEN) continue;
+      edges_where(cand, [&](edge_descriptor e) {
+        if (get(flag_, e) & FROZEN) return false;
         halfedge_descriptor h = halfedge(e, tm_);
         double hi = 4. / 3. * tsize(source(h, tm_), target(h, tm_));
-        if (sqlength(h) > hi * hi) cand.push_back(h);
-      }
+        return sqlength(h) > hi * hi;
+      });
       if (cand.empty()) break;
       // splits leave the other candidates' end points unchanged
       std::size_t done = 0;
-      for (halfedge_descriptor h : cand) {
+      for (edge_descriptor e : cand) {
+        const halfedge_descriptor h = halfedge(e, tm_);
         if (budget_spent()) return;
         if (split_thins_a_frozen_side(h)) {
           put(flag_, edge(h, tm_), char(get(flag_, edge(h, tm_)) | HELD));
@@ -540,15 +595,16 @@ public:
   void collapse_short_edges()
   {
     ++stamp_;
-    std::vector<halfedge_descriptor> cand;
-    for (edge_descriptor e : edges(tm_)) {
-      if (get(flag_, e) & FROZEN) continue;
+    std::vector<edge_descriptor> cand;
+    edges_where(cand, [&](edge_descriptor e) {
+      if (get(flag_, e) & FROZEN) return false;
       halfedge_descriptor h = halfedge(e, tm_);
       double lo = 4. / 5. * tsize(source(h, tm_), target(h, tm_));
-      if (sqlength(h) < lo * lo) cand.push_back(h);
-    }
-    for (halfedge_descriptor h : cand) {
+      return sqlength(h) < lo * lo;
+    });
+    for (edge_descriptor e : cand) {
       if (budget_spent()) return;
+      const halfedge_descriptor h = halfedge(e, tm_);
       if (get(dead_, h) == stamp_) continue;  // removed or changed by an earlier collapse
       double lo = 4. / 5. * tsize(source(h, tm_), target(h, tm_));
       if (sqlength(h) >= lo * lo) continue;
@@ -578,25 +634,56 @@ public:
     return false;
   }
 
+  // the valence test of flipping edge a-b (opposite corners c, d) with the
+  // degrees in deg_: the deviation from 6 (4 on the border) must go down and
+  // a, b keep a valid valence
+  bool flip_lowers_valence_deviation(vertex_descriptor a, vertex_descriptor b, vertex_descriptor c,
+                                     vertex_descriptor d) const
+  {
+    int da = get(deg_, a), db = get(deg_, b), dc = get(deg_, c), dd = get(deg_, d);
+    int ta = get(bnd_, a) ? 4 : 6, tb = get(bnd_, b) ? 4 : 6, tc = get(bnd_, c) ? 4 : 6,
+        td = get(bnd_, d) ? 4 : 6;
+    int before = std::abs(da - ta) + std::abs(db - tb) + std::abs(dc - tc) + std::abs(dd - td);
+    int after = std::abs(da - 1 - ta) + std::abs(db - 1 - tb) + std::abs(dc + 1 - tc) +
+                std::abs(dd + 1 - td);
+    if (after >= before) return false;
+    return !(da - 1 < (get(bnd_, a) ? 2 : 3) || db - 1 < (get(bnd_, b) ? 2 : 3));
+  }
+
   void flip_edges()
   {
-    for (vertex_descriptor v : vertices(tm_)) put(deg_, v, static_cast<int>(degree(v, tm_)));
-    std::vector<halfedge_descriptor> cand;
-    for (edge_descriptor e : edges(tm_))
-      if (get(flag_, e) == 0) cand.push_back(halfedge(e, tm_));
-    for (halfedge_descriptor h : cand) {
-      halfedge_descriptor o = opposite(h, tm_);
-      vertex_descriptor a = source(h, tm_), b = target(h, tm_);
-      vertex_descriptor c = target(next(h, tm_), tm_), d = target(next(o, tm_), tm_);
+    std::vector<vertex_descriptor> vs;
+    vertices_where(vs, [](vertex_descriptor) { return true; });
+    for_each_index(vs.size(), [&](std::size_t i) { put(deg_, vs[i], static_cast<int>(degree(vs[i], tm_))); });
+    std::vector<edge_descriptor> cand;
+    edges_where(cand, [&](edge_descriptor e) { return get(flag_, e) == 0; });
+    auto corners = [&](halfedge_descriptor h) {
+      return std::array<vertex_descriptor, 4>{source(h, tm_), target(h, tm_), target(next(h, tm_), tm_),
+                                              target(next(opposite(h, tm_), tm_), tm_)};
+    };
+    // A flip changes the degrees of its four corners and the faces of its
+    // edge only: an edge none of whose four corners took part in a flip since
+    // the scan passes the valence test now exactly when it passed it then.
+    // So with threads the test runs on all candidates at once, and the
+    // sequential loop looks again only at those that passed or were touched.
+    std::vector<char> passed, touched;
+    if constexpr (parallel_) {
+      passed.assign(cand.size(), 0);
+      for_each_index(cand.size(), [&](std::size_t i) {
+        const auto q = corners(halfedge(cand[i], tm_));
+        passed[i] = q[2] != q[3] && flip_lowers_valence_deviation(q[0], q[1], q[2], q[3]);
+      });
+      touched.assign(tm_.number_of_vertices() + tm_.number_of_removed_vertices(), 0);
+    }
+    for (std::size_t i = 0; i < cand.size(); ++i) {
+      const halfedge_descriptor h = halfedge(cand[i], tm_);
+      const auto q = corners(h);
+      const vertex_descriptor a = q[0], b = q[1], c = q[2], d = q[3];
+      if constexpr (parallel_)
+        if (!passed[i] && !touched[a] && !touched[b] && !touched[c] && !touched[d]) continue;
       if (c == d) continue;
-      int da = get(deg_, a), db = get(deg_, b), dc = get(deg_, c), dd = get(deg_, d);
-      int ta = get(bnd_, a) ? 4 : 6, tb = get(bnd_, b) ? 4 : 6, tc = get(bnd_, c) ? 4 : 6,
-          td = get(bnd_, d) ? 4 : 6;
-      int before = std::abs(da - ta) + std::abs(db - tb) + std::abs(dc - tc) + std::abs(dd - td);
-      int after = std::abs(da - 1 - ta) + std::abs(db - 1 - tb) + std::abs(dc + 1 - tc) +
-                  std::abs(dd + 1 - td);
-      if (after >= before) continue;
-      if (da - 1 < (get(bnd_, a) ? 2 : 3) || db - 1 < (get(bnd_, b) ? 2 : 3)) continue;
+      if (!flip_lowers_valence_deviation(a, b, c, d)) continue;
+      const int da = get(deg_, a), db = get(deg_, b), dc = get(deg_, c), dd = get(deg_, d);
       const Vec3 pa = get(pos_, a), pb = get(pos_, b), pc = get(pos_, c), pd = get(pos_, d);
       Vec3 m1 = triangle_normal(pa, pb, pc), m2 = triangle_normal(pb, pa, pd);  // (a,b,c), (b,a,d)
       Vec3 n1 = triangle_normal(pa, pd, pc), n2 = triangle_normal(pb, pc, pd);  // (a,d,c), (b,c,d)
@@ -611,6 +698,8 @@ public:
       put(deg_, b, db - 1);
       put(deg_, c, dc + 1);
       put(deg_, d, dd + 1);
+      if constexpr (parallel_)
+        for (vertex_descriptor v : q) touched[v] = 1;
       ++counters.flips;
     }
   }
@@ -662,17 +751,22 @@ public:
     return !halfedge(c, d, tm_).second;
   }
 
+  // has the face of h an angle whose cosine is above `cthr`?
+  bool face_angle_below(halfedge_descriptor h, double cthr) const
+  {
+    return min_angle_cos(get(pos_, source(h, tm_)), get(pos_, target(h, tm_)),
+                         get(pos_, target(next(h, tm_), tm_))) > cthr;
+  }
+
   void fix_bad_triangles(double min_deg)
   {
     const double cthr = std::cos(min_deg * CGAL_PI / 180.);
-    std::vector<halfedge_descriptor> bad;
-    for (face_descriptor f : faces(tm_)) {
-      halfedge_descriptor h = halfedge(f, tm_);
-      const Vec3 a = get(pos_, source(h, tm_)), b = get(pos_, target(h, tm_)),
-                 c = get(pos_, target(next(h, tm_), tm_));
-      if (min_angle_cos(a, b, c) > cthr) bad.push_back(h);
-    }
-    if (bad.empty()) return;
+    std::vector<face_descriptor> bad_faces;
+    faces_where(bad_faces, [&](face_descriptor f) { return face_angle_below(halfedge(f, tm_), cthr); });
+    if (bad_faces.empty()) return;
+    // halfedges, taken now: the flips below move the halfedge of a face
+    std::vector<halfedge_descriptor> bad(bad_faces.size());
+    for (std::size_t i = 0; i < bad.size(); ++i) bad[i] = halfedge(bad_faces[i], tm_);
     ++stamp_;
     for (halfedge_descriptor h : bad) {
       if (get(dead_, h) == stamp_ || is_border(h, tm_)) continue;
@@ -752,15 +846,19 @@ public:
     const double cthr = std::cos(min_deg * CGAL_PI / 180.);
     const bool lines = ref.has_lines(), surf = ref.has_surface();
     std::vector<vertex_descriptor> vs, moved;
+    auto add_vertices = [&](halfedge_descriptor h) {
+      for (vertex_descriptor v : {source(h, tm_), target(h, tm_), target(next(h, tm_), tm_)})
+        if (get(kind_, v) == V_FREE || (relax_lines_ && get(kind_, v) == V_LINE)) vs.push_back(v);
+    };
     auto add_if_bad = [&](halfedge_descriptor h) {
-      vertex_descriptor v3[3] = {source(h, tm_), target(h, tm_), target(next(h, tm_), tm_)};
-      if (min_angle_cos(get(pos_, v3[0]), get(pos_, v3[1]), get(pos_, v3[2])) > cthr)
-        for (vertex_descriptor v : v3)
-          if (get(kind_, v) == V_FREE || (relax_lines_ && get(kind_, v) == V_LINE))
-            vs.push_back(v);
+      if (face_angle_below(h, cthr)) add_vertices(h);
     };
     // one scan of the mesh; later rounds revisit the bad faces around moved vertices
-    for (face_descriptor f : faces(tm_)) add_if_bad(halfedge(f, tm_));
+    {
+      std::vector<face_descriptor> bad;
+      faces_where(bad, [&](face_descriptor f) { return face_angle_below(halfedge(f, tm_), cthr); });
+      for (face_descriptor f : bad) add_vertices(halfedge(f, tm_));
+    }
     for (int round = 0; round < rounds && !vs.empty(); ++round) {
       std::sort(vs.begin(), vs.end());
       vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
@@ -830,8 +928,9 @@ public:
   void relax_and_project(bool project)
   {
     std::vector<vertex_descriptor> vs;
-    for (vertex_descriptor v : vertices(tm_))
-      if (get(kind_, v) == V_FREE || (relax_lines_ && get(kind_, v) == V_LINE)) vs.push_back(v);
+    vertices_where(vs, [&](vertex_descriptor v) {
+      return get(kind_, v) == V_FREE || (relax_lines_ && get(kind_, v) == V_LINE);
+    });
     std::vector<Vec3> np(vs.size()), normal(vs.size()), old(vs.size());
     std::vector<double> ns(vs.size());
     const bool lines = ref.has_lines(), surf = ref.has_surface();
