@@ -48,11 +48,6 @@ class Reference_surface
   mutable std::mutex tri_tree_mutex_;
   std::unique_ptr<Seg_tree> seg_tree_;
 
-  // per triangle, a ball that holds it (centroid, radius with a margin): the
-  // local descent skips a triangle whose ball lies farther than the best
-  // distance so far, which cannot be closer (the margin covers rounding)
-  std::vector<std::array<double, 4>> ball_;
-
   static K::Point_3 kp(const Vec3& p) { return K::Point_3(p[0], p[1], p[2]); }
   static Vec3 vp(const K::Point_3& p) { return to_vec3(p); }
 
@@ -80,14 +75,6 @@ public:
       for (std::size_t i = 0; i < triangles.size(); ++i)
         for (int k = 0; k < 3; ++k) star[fill[triangles[i][k]]++] = static_cast<int>(i);
     }
-    ball_.resize(triangles.size());
-    parallel_for_index(triangles.size(), 4096, [&](std::size_t i) {
-      const auto& t = triangles[i];
-      const Vec3 c = (1. / 3.) * (points[t[0]] + points[t[1]] + points[t[2]]);
-      double r2 = 0;
-      for (int k = 0; k < 3; ++k) r2 = std::max(r2, squared_norm(points[t[k]] - c));
-      ball_[i] = {c[0], c[1], c[2], std::sqrt(r2) * (1 + 1e-6)};
-    });
     // Triangles and segments so small that the trees' closest-point
     // constructions would divide underflowed squares (|n|^2 below ~1e-290:
     // edges under ~1e-72) are left out: they produced NaN, which the exact
@@ -204,21 +191,6 @@ public:
       // strict minimum (neighbouring stars overlap in most of their triangles).
       int done[48];
       int ndone = 0;
-      // the skipping bound: the hint triangle's distance until a closer one
-      // is found (the descent evaluates the hint itself, so the result is the
-      // one of the full descent); sqrt of it, widened against rounding
-      double reach = std::numeric_limits<double>::infinity();
-      {
-        const auto& tr = triangles[hint];
-        double u, v, w;
-        const Vec3 p = closest_on_triangle(q, points[tr[0]], points[tr[1]], points[tr[2]], u, v, w);
-        reach = std::sqrt(squared_norm(p - q)) * (1 + 1e-6);
-      }
-      auto may_be_closer = [&](int t) {
-        const auto& b = ball_[t];
-        const double dx = q[0] - b[0], dy = q[1] - b[1], dz = q[2] - b[2], m = b[3] + reach;
-        return !(dx * dx + dy * dy + dz * dz > m * m);
-      };
       auto is_done = [&](int p) {
         for (int i = 0; i < ndone; ++i)
           if (done[i] == p) return true;
@@ -233,14 +205,10 @@ public:
             int t = star[j];
             const auto& tr = triangles[t];
             if (is_done(tr[0]) || is_done(tr[1]) || is_done(tr[2])) continue;
-            if (!may_be_closer(t)) continue;
             double u, v, w;
             Vec3 p = closest_on_triangle(q, points[tr[0]], points[tr[1]], points[tr[2]], u, v, w);
             double d = squared_norm(p - q);
-            if (d < bd) {
-              bd = d; best = t; bp = p; bu = u; bv = v; bw = w;
-              reach = std::min(reach, std::sqrt(d) * (1 + 1e-6));
-            }
+            if (d < bd) { bd = d; best = t; bp = p; bu = u; bv = v; bw = w; }
           }
           if (ndone < 48) done[ndone++] = pv;  // when full, stars are evaluated again
         }

@@ -36,8 +36,10 @@
 #include <CGAL/number_utils.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -664,44 +666,73 @@ public:
     // A flip changes the degrees of its four corners and the faces of its
     // edge only: an edge none of whose four corners took part in a flip since
     // the scan passes the valence test now exactly when it passed it then.
-    // So with threads the test runs on all candidates at once, and the
-    // sequential loop looks again only at those that passed or were touched.
-    std::vector<char> passed, touched;
+    // So with threads the test runs on all candidates at once, and instead of
+    // the loop over all of them, the edges that passed, and those that a flip
+    // touched (its corners' edges and the edges facing them) later in the
+    // order, are taken in the order of the loop (edge index): the same flips.
     if constexpr (parallel_) {
-      passed.assign(cand.size(), 0);
+      std::vector<char> passed(cand.size());
       for_each_index(cand.size(), [&](std::size_t i) {
         const auto q = corners(halfedge(cand[i], tm_));
         passed[i] = q[2] != q[3] && flip_lowers_valence_deviation(q[0], q[1], q[2], q[3]);
       });
-      touched.assign(tm_.number_of_vertices() + tm_.number_of_removed_vertices(), 0);
+      std::vector<std::size_t> queue;  // a min-heap of edge indices
+      for (std::size_t i = 0; i < cand.size(); ++i)
+        if (passed[i]) queue.push_back(std::size_t(cand[i]));
+      const std::greater<std::size_t> later;
+      std::make_heap(queue.begin(), queue.end(), later);
+      std::size_t last = std::size_t(-1);
+      while (!queue.empty()) {
+        std::pop_heap(queue.begin(), queue.end(), later);
+        const std::size_t i = queue.back();
+        queue.pop_back();
+        if (i == last) continue;  // queued twice
+        last = i;
+        const edge_descriptor e(static_cast<typename TriangleMesh::size_type>(i));
+        const auto q = corners(halfedge(e, tm_));
+        if (!try_flip(halfedge(e, tm_), q)) continue;
+        for (vertex_descriptor v : q)
+          for (halfedge_descriptor g : halfedges_around_target(v, tm_))
+            for (halfedge_descriptor x : {g, prev(g, tm_)}) {
+              const edge_descriptor t = edge(x, tm_);
+              if (std::size_t(t) > i && get(flag_, t) == 0 && !(is_border(x, tm_) && x != g)) {
+                queue.push_back(std::size_t(t));
+                std::push_heap(queue.begin(), queue.end(), later);
+              }
+            }
+      }
+    } else {
+      for (edge_descriptor e : cand) {
+        const halfedge_descriptor h = halfedge(e, tm_);
+        try_flip(h, corners(h));
+      }
     }
-    for (std::size_t i = 0; i < cand.size(); ++i) {
-      const halfedge_descriptor h = halfedge(cand[i], tm_);
-      const auto q = corners(h);
-      const vertex_descriptor a = q[0], b = q[1], c = q[2], d = q[3];
-      if constexpr (parallel_)
-        if (!passed[i] && !touched[a] && !touched[b] && !touched[c] && !touched[d]) continue;
-      if (c == d) continue;
-      if (!flip_lowers_valence_deviation(a, b, c, d)) continue;
-      const int da = get(deg_, a), db = get(deg_, b), dc = get(deg_, c), dd = get(deg_, d);
-      const Vec3 pa = get(pos_, a), pb = get(pos_, b), pc = get(pos_, c), pd = get(pos_, d);
-      Vec3 m1 = triangle_normal(pa, pb, pc), m2 = triangle_normal(pb, pa, pd);  // (a,b,c), (b,a,d)
-      Vec3 n1 = triangle_normal(pa, pd, pc), n2 = triangle_normal(pb, pc, pd);  // (a,d,c), (b,c,d)
-      Vec3 m = m1 + m2;
-      double l1 = squared_norm(n1), l2 = squared_norm(n2), lm = squared_norm(m1) + squared_norm(m2);
-      if (!(l1 > 1e-12 * lm) || !(l2 > 1e-12 * lm)) continue;
-      if (dot(n1, m) <= 0 || dot(n2, m) <= 0 || dot(n1, n2) <= 0) continue;
-      if (flip_folds(h)) continue;
-      if (halfedge(c, d, tm_).second) continue;
-      CGAL::Euler::flip_edge(h, tm_);
-      put(deg_, a, da - 1);
-      put(deg_, b, db - 1);
-      put(deg_, c, dc + 1);
-      put(deg_, d, dd + 1);
-      if constexpr (parallel_)
-        for (vertex_descriptor v : q) touched[v] = 1;
-      ++counters.flips;
-    }
+  }
+
+  // flips h = a-b (opposite corners c, d) when that lowers the valence
+  // deviation and no face flips, degenerates or folds
+  bool try_flip(halfedge_descriptor h, const std::array<vertex_descriptor, 4>& q)
+  {
+    const vertex_descriptor a = q[0], b = q[1], c = q[2], d = q[3];
+    if (c == d) return false;
+    if (!flip_lowers_valence_deviation(a, b, c, d)) return false;
+    const int da = get(deg_, a), db = get(deg_, b), dc = get(deg_, c), dd = get(deg_, d);
+    const Vec3 pa = get(pos_, a), pb = get(pos_, b), pc = get(pos_, c), pd = get(pos_, d);
+    Vec3 m1 = triangle_normal(pa, pb, pc), m2 = triangle_normal(pb, pa, pd);  // (a,b,c), (b,a,d)
+    Vec3 n1 = triangle_normal(pa, pd, pc), n2 = triangle_normal(pb, pc, pd);  // (a,d,c), (b,c,d)
+    Vec3 m = m1 + m2;
+    double l1 = squared_norm(n1), l2 = squared_norm(n2), lm = squared_norm(m1) + squared_norm(m2);
+    if (!(l1 > 1e-12 * lm) || !(l2 > 1e-12 * lm)) return false;
+    if (dot(n1, m) <= 0 || dot(n2, m) <= 0 || dot(n1, n2) <= 0) return false;
+    if (flip_folds(h)) return false;
+    if (halfedge(c, d, tm_).second) return false;
+    CGAL::Euler::flip_edge(h, tm_);
+    put(deg_, a, da - 1);
+    put(deg_, b, db - 1);
+    put(deg_, c, dc + 1);
+    put(deg_, d, dd + 1);
+    ++counters.flips;
+    return true;
   }
 
   // --------------------------------------------------- bad-triangle cleanup
