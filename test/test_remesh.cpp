@@ -568,6 +568,62 @@ TYPED_TEST(Remesh, parallel_tag_and_real_mesh)
   EXPECT_GT(r.feature_edges, 100u);
 }
 
+// With threads the remesher's whole-mesh scans (the candidates of the
+// splits, collapses, flips and cleanup, the vertices to relax) run in
+// parallel and its flips come from a heap of the edges that passed the
+// valence test or that a flip touched: the result must be the sequential
+// one, point for point and face for face. Surface_mesh only: on Polyhedron_3
+// the remesher runs sequentially with either tag. A torus of 25,600 faces
+// (38,400 edges: past the size where the scans use threads), its points
+// jittered so that every pass has work, remeshed to 0.6 and 1.5 times its
+// mean edge length and adaptively.
+TEST(Remesh_threads, parallel_passes_give_the_sequential_mesh)
+{
+  using Mesh = CGAL::Surface_mesh<Point>;
+  Soup s = torus(2.0, 0.7, 160, 80);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.004, 0.004);
+  for (Point& p : s.points) p = Point(p.x() + jitter(rng), p.y() + jitter(rng), p.z() + jitter(rng));
+  Mesh input;
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(s.points, s.polygons, input);
+  ASSERT_EQ(num_faces(input), 25600u);
+  const double mean = mean_edge_length(input);
+  auto same = [](const Mesh& a, const Mesh& b) {
+    if (num_vertices(a) != num_vertices(b) || num_faces(a) != num_faces(b)) return false;
+    for (auto v : vertices(a))
+      if (a.point(v) != b.point(v)) return false;
+    for (auto f : faces(a)) {
+      auto ha = halfedge(f, a), hb = halfedge(f, b);
+      for (int k = 0; k < 3; ++k, ha = next(ha, a), hb = next(hb, b))
+        if (std::size_t(target(ha, a)) != std::size_t(target(hb, b))) return false;
+    }
+    return true;
+  };
+  for (double factor : {0.6, 1.5}) {
+    Mesh seq = input, par = input;
+    auto rs = mrepair::isotropic_remesh<CGAL::Sequential_tag>(seq, factor * mean,
+                                                              CGAL::parameters::number_of_iterations(3));
+    auto rp = mrepair::isotropic_remesh<CGAL::Parallel_if_available_tag>(par, factor * mean,
+                                                                        CGAL::parameters::number_of_iterations(3));
+    ASSERT_EQ(rs.status, mrepair::Status::ok);
+    ASSERT_EQ(rp.status, mrepair::Status::ok);
+    EXPECT_GT(rs.flips, 0u) << factor;
+    EXPECT_GT(rs.splits + rs.collapses, 1000u) << factor;
+    EXPECT_EQ(rs.flips, rp.flips) << factor;
+    EXPECT_EQ(rs.splits, rp.splits) << factor;
+    EXPECT_EQ(rs.collapses, rp.collapses) << factor;
+    EXPECT_TRUE(same(seq, par)) << "factor " << factor;
+    expect_valid(par);
+  }
+  Mesh seq = input, par = input;
+  auto rs = mrepair::adaptive_remesh<CGAL::Sequential_tag>(seq, 0.002);
+  auto rp = mrepair::adaptive_remesh<CGAL::Parallel_if_available_tag>(par, 0.002);
+  ASSERT_EQ(rs.status, mrepair::Status::ok) << rs.message;
+  ASSERT_EQ(rp.status, mrepair::Status::ok) << rp.message;
+  EXPECT_TRUE(same(seq, par)) << "adaptive";
+  expect_valid(par);
+}
+
 TYPED_TEST(Remesh, fandisk_no_self_intersections_and_min_angle)
 {
   using Mesh = typename TypeParam::Mesh;
