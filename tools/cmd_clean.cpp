@@ -111,7 +111,7 @@ int run_clean(int argc, char** argv)
   if (!mrepair::is_polygon_soup_a_polygon_mesh(polygons, points.size()))
     return cli::fail(a.positional[0] +
                      ": not a manifold, consistently oriented polygon mesh; run `mrepair repair`");
-  Mesh mesh;
+  Mesh& mesh = cli::kept_until_exit<Mesh>();
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, mesh);
   points.clear();
   polygons.clear();

@@ -219,7 +219,7 @@ int run(int argc, char** argv)
   }
 
   mrepair::Report report;
-  Mesh mesh;
+  Mesh& mesh = mrepair::cli::kept_until_exit<Mesh>();
   mrepair::Io_result io;
   const double read_seconds = mrepair::cli::timed([&] { io = mrepair::read_polygon_mesh(a.positional[0], mesh); });
   if (verbose) std::cerr << "  read: " << std::to_string(read_seconds).substr(0, 6) << " s\n";

@@ -59,8 +59,11 @@ int run(int argc, char** argv)
     iterations = int(k);
   }
 
-  Mesh mesh;
+  cli::Progress_printer printer(a);
+  Mesh& mesh = cli::kept_until_exit<Mesh>();
+  printer.start_phase("read");
   mrepair::Io_result io = mrepair::read_polygon_mesh(a.positional[0], mesh);
+  printer.end_phase("read");
   if (!mrepair::succeeded(io.status))
     return cli::fail(a.positional[0] + ": " + mrepair::to_string(io.status) +
                      (io.message.empty() ? "" : " (" + io.message + ")"));
@@ -69,7 +72,6 @@ int run(int argc, char** argv)
   if (!cli::triangulate_polygons(mesh, report, error))
     return cli::fail(a.positional[0] + ": " + error);
 
-  cli::Progress_printer printer(a);
   const std::size_t vertices_in = mesh.number_of_vertices();
   auto np = mrepair::parameters::remesh_feature_angle(feature_angle)
                 .number_of_iterations(iterations)
@@ -110,7 +112,9 @@ int run(int argc, char** argv)
     cli::emit_report(a, report);
     return cli::fail(std::string("remesh: ") + mrepair::to_string(r.status) + ": " + r.message);
   }
+  printer.start_phase("write");
   mrepair::Io_result w = mrepair::write_polygon_mesh(a.positional[1], mesh, cli::write_binary(a, io, a.positional[1]));
+  printer.end_phase("write");
   if (!mrepair::succeeded(w.status))
     return cli::fail(a.positional[1] + ": " + mrepair::to_string(w.status) + " " + w.message);
   if (!cli::emit_report(a, report)) return 1;

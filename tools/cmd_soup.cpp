@@ -75,7 +75,7 @@ int run(int argc, char** argv)
 
   mrepair::Report report;
   io.to_report(report.section("file"));
-  Mesh mesh;
+  Mesh& mesh = cli::kept_until_exit<Mesh>();
   mrepair::Inspection_report before, after;
   auto inspect_and_repair = [&](auto& soup) {
     before = mrepair::inspect_polygon_soup(points, soup, MP::count_self_intersections(false));

@@ -36,13 +36,14 @@ class Reference_surface
   using Tri_tree = Aabb_tree<K, Tri_prim>;
   using Seg_tree = Aabb_tree<K, Seg_prim>;
 
-  Tri_vec tri_geo_;
+  mutable Tri_vec tri_geo_;  // made with the tree (triangle_tree())
   Seg_vec seg_geo_;
-  std::vector<int> tri_of_prim_, prim_of_tri_;  // tree primitive <-> triangle index
+  mutable std::vector<int> tri_of_prim_, prim_of_tri_;  // tree primitive <-> triangle index
   std::vector<int> seg_of_prim_, prim_of_seg_;
   // The triangle tree is only the fallback of the local descent (a vertex
   // that moved farther than its target length), which most runs never take:
   // it is built on first use (a third of the setup at 1M faces).
+  std::size_t large_triangles_ = 0;  // triangles that go into the tree
   mutable std::unique_ptr<Tri_tree> tri_tree_;
   mutable std::atomic<bool> tri_tree_ready_{false};
   mutable std::mutex tri_tree_mutex_;
@@ -75,28 +76,16 @@ public:
       for (std::size_t i = 0; i < triangles.size(); ++i)
         for (int k = 0; k < 3; ++k) star[fill[triangles[i][k]]++] = static_cast<int>(i);
     }
-    // Triangles and segments so small that the trees' closest-point
-    // constructions would divide underflowed squares (|n|^2 below ~1e-290:
-    // edges under ~1e-72) are left out: they produced NaN, which the exact
-    // fallback of the distance comparison turned into SIGFPE. Their points lie
-    // on their neighbours, and the local descent still visits them.
-    const double tiny = 1e-290;
+    // the tiny triangles and segments stay out of the trees (see is_large)
+    std::vector<char> large(triangles.size());
+    parallel_for_index(triangles.size(), 4096, [&](std::size_t i) { large[i] = is_large(i); });
+    large_triangles_ = static_cast<std::size_t>(std::count(large.begin(), large.end(), char(1)));
+    // the tree's primitives are made with the tree, when a projection first
+    // needs it: most runs never do (every vertex has a hint), and 1M
+    // Triangle_3 are 72 MB to fill
     tri_geo_.clear();
     tri_of_prim_.clear();
-    prim_of_tri_.assign(triangles.size(), -1);
-    std::vector<char> large(triangles.size());
-    parallel_for_index(triangles.size(), 4096, [&](std::size_t i) {
-      const auto& t = triangles[i];
-      large[i] = squared_norm(triangle_normal(points[t[0]], points[t[1]], points[t[2]])) > tiny;
-    });
-    tri_geo_.reserve(triangles.size());
-    for (std::size_t i = 0; i < triangles.size(); ++i) {
-      const auto& t = triangles[i];
-      if (!large[i]) continue;
-      prim_of_tri_[i] = static_cast<int>(tri_geo_.size());
-      tri_of_prim_.push_back(static_cast<int>(i));
-      tri_geo_.emplace_back(kp(points[t[0]]), kp(points[t[1]]), kp(points[t[2]]));
-    }
+    prim_of_tri_.clear();
     seg_geo_.clear();
     seg_of_prim_.clear();
     prim_of_seg_.assign(segments.size(), -1);
@@ -117,7 +106,19 @@ public:
     }
   }
 
-  bool has_surface() const { return !tri_geo_.empty(); }
+  bool has_surface() const { return large_triangles_ > 0; }
+
+  // Triangles and segments so small that the trees' closest-point
+  // constructions would divide underflowed squares (|n|^2 below ~1e-290:
+  // edges under ~1e-72) are left out of the trees: they produced NaN, which
+  // the exact fallback of the distance comparison turned into SIGFPE. Their
+  // points lie on their neighbours, and the local descent still visits them.
+  static constexpr double tiny = 1e-290;
+  bool is_large(std::size_t i) const
+  {
+    const auto& t = triangles[i];
+    return squared_norm(triangle_normal(points[t[0]], points[t[1]], points[t[2]])) > tiny;
+  }
 
   // thread-safe: relaxation projects in parallel
   const Tri_tree& triangle_tree() const
@@ -125,6 +126,15 @@ public:
     if (!tri_tree_ready_.load(std::memory_order_acquire)) {
       std::lock_guard<std::mutex> lock(tri_tree_mutex_);
       if (!tri_tree_ready_.load(std::memory_order_relaxed)) {
+        prim_of_tri_.assign(triangles.size(), -1);
+        tri_geo_.reserve(large_triangles_);
+        for (std::size_t i = 0; i < triangles.size(); ++i) {
+          if (!is_large(i)) continue;
+          const auto& t = triangles[i];
+          prim_of_tri_[i] = static_cast<int>(tri_geo_.size());
+          tri_of_prim_.push_back(static_cast<int>(i));
+          tri_geo_.emplace_back(kp(points[t[0]]), kp(points[t[1]]), kp(points[t[2]]));
+        }
         tri_tree_.reset(new Tri_tree(tri_geo_.cbegin(), tri_geo_.cend()));
         tri_tree_->build();
         tri_tree_->accelerate_distance_queries();
@@ -228,8 +238,8 @@ public:
   /// closest point by the AABB tree; `hint` gets the triangle found.
   Vec3 project_surface_tree(const Vec3& q, double& size, int& hint) const
   {
+    const Tri_tree& tree = triangle_tree();  // makes prim_of_tri_ too
     const int ph = hint >= 0 && hint < int(triangles.size()) ? prim_of_tri_[hint] : -1;
-    const Tri_tree& tree = triangle_tree();
     auto pp = ph >= 0 ? tree.closest_point_and_primitive(
                             kp(q), std::make_pair(tri_geo_[ph].vertex(0), tri_geo_.cbegin() + ph))
                       : tree.closest_point_and_primitive(kp(q));
