@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -31,9 +32,12 @@ namespace io {
 /// indices[c] to the next vertex of its polygon.
 class Soup_topology
 {
+  // a corner and the target of its edge, grouped by source; 32-bit where the
+  // soup fits (every soup below 4G corners): half the memory to fill and sort
+  template <class Index>
   struct Out
   {
-    std::size_t dst, corner;
+    Index dst, corner;
   };
 
 public:
@@ -82,60 +86,11 @@ public:
       return true;
     };
     if (first_failure(num_polygons, polygon_ok, why) != none) return false;
-    auto src = [&](std::size_t c) { return static_cast<std::size_t>(indices[c]); };
-    auto dst = [&](std::size_t c) { return static_cast<std::size_t>(indices[next[c]]); };
-
-    // corners grouped by source vertex, each group sorted by target; the
-    // target is stored beside the corner so that lookups stay in one group
-    out_start.assign(num_points + 1, 0);
-    for (std::size_t c = 0; c < nc; ++c) ++out_start[src(c) + 1];
-    for (std::size_t v = 0; v < num_points; ++v) out_start[v + 1] += out_start[v];
-    std::vector<Out> adj(nc);
-    {
-      std::vector<std::size_t> fill(num_points);
-      std::copy(out_start.begin(), out_start.begin() + static_cast<std::ptrdiff_t>(num_points),
-                fill.begin());
-      for (std::size_t c = 0; c < nc; ++c) adj[fill[src(c)]++] = Out{dst(c), c};
-    }
-    auto group_ok = [&](std::size_t v, std::string& reason) {
-      if (out_start[v] == out_start[v + 1]) return true;  // no corner (adj may be empty: no pointer arithmetic)
-      Out* b = adj.data() + out_start[v];
-      Out* e = adj.data() + out_start[v + 1];
-      if (e - b <= 16) {  // insertion sort: groups are small (valence)
-        for (Out* i = b + 1; i < e; ++i)
-          for (Out* j = i; j > b && j->dst < (j - 1)->dst; --j) std::swap(*j, *(j - 1));
-      } else {
-        std::sort(b, e, [](const Out& x, const Out& y) { return x.dst < y.dst; });
-      }
-      for (Out* it = b; it != e; ++it) {
-        if (it->dst == v) {
-          reason = "a polygon repeats vertex " + std::to_string(v);
-          return false;
-        }
-        if (it + 1 != e && it->dst == (it + 1)->dst) {
-          reason = "edge (" + std::to_string(v) + ", " + std::to_string(it->dst) +
-                   ") is used twice in the same direction (non-manifold edge or inconsistent orientation)";
-          return false;
-        }
-      }
-      return true;
-    };
-    if (first_failure(num_points, group_ok, why) != none) return false;
-    // opposite of corner c (u -> w): the corner w -> u
-    opposite.assign(nc, none);
-    out.resize(nc);
-    parallel_blocks(num_points, [&](std::size_t u) {
-      for (std::size_t k = out_start[u]; k < out_start[u + 1]; ++k) {
-        out[k] = adj[k].corner;
-        const std::size_t w = adj[k].dst;
-        const Out* b = adj.data() + out_start[w];
-        const Out* e = adj.data() + out_start[w + 1];
-        const Out* it = e - b <= 16 ? std::find_if(b, e, [u](const Out& o) { return o.dst == u; })
-                                    : std::lower_bound(b, e, u, [](const Out& o, std::size_t t) { return o.dst < t; });
-        if (it != e && it->dst == u) opposite[adj[k].corner] = it->corner;
-      }
-    });
-    adj = std::vector<Out>();
+    const bool narrow = nc < std::numeric_limits<std::uint32_t>::max() &&
+                        num_points < std::numeric_limits<std::uint32_t>::max();
+    if (!(narrow ? link_corners<std::uint32_t>(num_points, indices, nc, why)
+                 : link_corners<std::size_t>(num_points, indices, nc, why)))
+      return false;
     // one fan per vertex: corners at v chained by c -> next[opposite[c]]
     auto fan_ok = [&](std::size_t v, std::string& reason) {
       const std::size_t deg = out_start[v + 1] - out_start[v];
@@ -168,6 +123,70 @@ public:
   }
 
 private:
+  /// the corners grouped by source vertex (out_start, out) and each corner's
+  /// opposite, with the checks of the groups (no edge used twice in the same
+  /// direction, no degenerate edge); false with the first failure in `why`.
+  template <class Index>
+  bool link_corners(std::size_t num_points, const std::int64_t* indices, std::size_t nc, std::string& why)
+  {
+    auto src = [&](std::size_t c) { return static_cast<std::size_t>(indices[c]); };
+    auto dst = [&](std::size_t c) { return static_cast<std::size_t>(indices[next[c]]); };
+
+    // corners grouped by source vertex, each group sorted by target; the
+    // target is stored beside the corner so that lookups stay in one group
+    out_start.assign(num_points + 1, 0);
+    for (std::size_t c = 0; c < nc; ++c) ++out_start[src(c) + 1];
+    for (std::size_t v = 0; v < num_points; ++v) out_start[v + 1] += out_start[v];
+    std::vector<Out<Index>> adj(nc);
+    {
+      std::vector<std::size_t> fill(num_points);
+      std::copy(out_start.begin(), out_start.begin() + static_cast<std::ptrdiff_t>(num_points),
+                fill.begin());
+      for (std::size_t c = 0; c < nc; ++c)
+        adj[fill[src(c)]++] = Out<Index>{static_cast<Index>(dst(c)), static_cast<Index>(c)};
+    }
+    auto group_ok = [&](std::size_t v, std::string& reason) {
+      if (out_start[v] == out_start[v + 1]) return true;  // no corner (adj may be empty: no pointer arithmetic)
+      Out<Index>* b = adj.data() + out_start[v];
+      Out<Index>* e = adj.data() + out_start[v + 1];
+      if (e - b <= 16) {  // insertion sort: groups are small (valence)
+        for (Out<Index>* i = b + 1; i < e; ++i)
+          for (Out<Index>* j = i; j > b && j->dst < (j - 1)->dst; --j) std::swap(*j, *(j - 1));
+      } else {
+        std::sort(b, e, [](const Out<Index>& x, const Out<Index>& y) { return x.dst < y.dst; });
+      }
+      for (Out<Index>* it = b; it != e; ++it) {
+        if (it->dst == v) {
+          reason = "a polygon repeats vertex " + std::to_string(v);
+          return false;
+        }
+        if (it + 1 != e && it->dst == (it + 1)->dst) {
+          reason = "edge (" + std::to_string(v) + ", " + std::to_string(it->dst) +
+                   ") is used twice in the same direction (non-manifold edge or inconsistent orientation)";
+          return false;
+        }
+      }
+      return true;
+    };
+    if (first_failure(num_points, group_ok, why) != none) return false;
+    // opposite of corner c (u -> w): the corner w -> u
+    opposite.assign(nc, none);
+    out.resize(nc);
+    parallel_blocks(num_points, [&](std::size_t u) {
+      for (std::size_t k = out_start[u]; k < out_start[u + 1]; ++k) {
+        out[k] = adj[k].corner;
+        const std::size_t w = adj[k].dst;
+        const Out<Index>* b = adj.data() + out_start[w];
+        const Out<Index>* e = adj.data() + out_start[w + 1];
+        const Out<Index>* it =
+            e - b <= 16 ? std::find_if(b, e, [u](const Out<Index>& o) { return o.dst == u; })
+                        : std::lower_bound(b, e, u, [](const Out<Index>& o, std::size_t t) { return o.dst < t; });
+        if (it != e && it->dst == u) opposite[adj[k].corner] = it->corner;
+      }
+    });
+    return true;
+  }
+
   static constexpr std::size_t block_size = std::size_t(1) << 14;
 
   // calls f(i) for i in [0, n), in parallel blocks
