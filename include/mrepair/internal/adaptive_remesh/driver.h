@@ -72,27 +72,19 @@ inline Remeshing_result refuse_remeshing(Remeshing_result res, Status s, const s
 
 /// `iterations` of adaptive remeshing at tolerance `eps`, with the sizing
 /// lowered around the faces that deviate more than `limit` (to reach `goal`)
-/// after 2/5 and 7/10 of them (Remesher::refine_deviating_faces), and with
-/// `both_ways` around the input points farther than `limit` from the mesh
-/// too (refine_near_distant_input: the tolerance holds both ways, as the
-/// Hausdorff distance measures it). The face-count mode, which trims only
-/// outliers before it corrects the count, does without.
+/// after 2/5 and 7/10 of them (Remesher::refine_deviating_faces).
 template <typename Remesher, typename VisitorHandle>
 Status run_with_error_control(Remesher& R, int iterations, bool project, double limit, double goal,
-                              double lmin, bool both_ways, VisitorHandle& vis)
+                              double lmin, VisitorHandle& vis)
 {
   if (iterations < 4) return R.run(iterations, project, vis);
   const int first = (2 * iterations) / 5, second = (7 * iterations) / 10 - first;
-  auto refine = [&] {
-    R.refine_deviating_faces(limit, goal, lmin);
-    if (both_ways) R.refine_near_distant_input(limit, goal, lmin);
-  };
   Status st = R.run(first, project, vis, false);
   if (st != Status::ok) return st;
-  refine();
+  R.refine_deviating_faces(limit, goal, lmin);
   st = R.run(second, project, vis, false);
   if (st != Status::ok) return st;
-  refine();
+  R.refine_deviating_faces(limit, goal, lmin);
   return R.run(iterations - first - second, project, vis);
 }
 
@@ -142,8 +134,7 @@ Status remesh_to_count(Remesher& R, const Remesh_options& o, double value, std::
   res.tolerance = eps;
   // the tolerance found predicts the count, not the deviation: only the
   // outliers (3 x eps, refined to 2 x eps) are refined, the count corrected after
-  Status st =
-      run_with_error_control(R, std::max(o.iterations, 4), o.project, 3. * eps, 2. * eps, lmin, false, vis);
+  Status st = run_with_error_control(R, std::max(o.iterations, 4), o.project, 3. * eps, 2. * eps, lmin, vis);
   bool corrected = false;
   for (int round = 0; round < 8 && st == Status::ok; ++round) {
     const double F = static_cast<double>(internal::face_count(tm) - outside);
@@ -219,11 +210,12 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
       if (!(lmin > 0) || !(lmax >= lmin) || !std::isfinite(lmax))
         return fail(Status::invalid_parameter, "need 0 < remesh_min_edge_length <= remesh_max_edge_length");
       R.set_adaptive(value, lmin / o.density, lmax / o.density, o.gamma);
+      R.guard_min_angle_pass(value);
       const auto& s = R.reference().sizing;
       res.min_target = s.empty() ? 0 : *std::min_element(s.begin(), s.end());
       res.max_target = s.empty() ? 0 : *std::max_element(s.begin(), s.end());
       // deviations over the tolerance are refined to 0.7 x the tolerance
-      st = run_with_error_control(R, o.iterations, o.project, value, 0.7 * value, lmin / o.density, true, vis);
+      st = run_with_error_control(R, o.iterations, o.project, value, 0.7 * value, lmin / o.density, vis);
     } else {
       st = remesh_to_count(R, o, value, whole ? 0 : res.faces_before - R.reference().triangles.size(),
                            tm, vis, res);

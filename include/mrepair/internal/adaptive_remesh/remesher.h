@@ -101,7 +101,7 @@ class Remesher
   Reference_surface ref;
   bool uniform_ = true;
   double L_ = 1;
-  double eps_ = 0;  // adaptive mode: the tolerance (the min-angle pass keeps within it)
+  double guard_ = 0;  // > 0: the min-angle pass keeps the faces it moves within this distance
   double collapse_cos_ = 0.2;  // collapse rejected when a face normal turns more than ~78 deg
   bool relax_lines_ = true;
   double bad_angle_ = 20.;  // degrees: faces below it get the cleanup pass
@@ -128,6 +128,10 @@ public:
   const Reference_surface& reference() const { return ref; }
   Reference_surface& reference() { return ref; }
   void set_relax_lines(bool b) { relax_lines_ = b; }
+  /// the final min-angle pass keeps a move only when the vertex's faces stay
+  /// within `tolerance` of the input, or within their deviation before
+  /// (adaptive mode; 0: no check, as in the uniform and face-count modes)
+  void guard_min_angle_pass(double tolerance) { guard_ = tolerance; }
   /// caps the splits plus collapses of all runs; `run` returns `partial` once spent
   void set_operation_budget(std::size_t n) { op_budget_ = n; }
   bool budget_spent() const
@@ -264,7 +268,6 @@ public:
   void set_adaptive(double eps, double lmin, double lmax, double gamma)
   {
     uniform_ = false;
-    eps_ = eps;
     ref.compute_adaptive_sizing(eps, lmin, lmax, gamma);
     for (vertex_descriptor v : vertices(tm_)) {
       int r = get(ref_, v);
@@ -877,6 +880,7 @@ public:
   void optimize_bad_vertices(double min_deg, bool project, int rounds)
   {
     const double cthr = std::cos(min_deg * CGAL_PI / 180.);
+    const double sliver_cos = std::cos(10. * CGAL_PI / 180.);
     const bool lines = ref.has_lines(), surf = ref.has_surface();
     std::vector<vertex_descriptor> vs, moved;
     auto add_vertices = [&](halfedge_descriptor h) {
@@ -923,17 +927,19 @@ public:
           }
         }
         if (bp == pv) continue;
-        // Adaptive mode: a move that widens an angle can swing the vertex's
-        // faces off the input (on armadillo at 0.004 x diagonal this pass made
-        // the largest deviation, 2.3 x the tolerance, where every face had
-        // been within it): kept only when its faces stay within the
-        // tolerance, or within their deviation before.
-        const double before = !uniform_ && surf && project ? star_deviation(v) : 0.;
+        // With a guard (adaptive mode): a move that widens an angle can swing
+        // the vertex's faces off the input (on armadillo at 0.004 x diagonal
+        // this pass made the largest deviation, 2.2 x the tolerance, where
+        // every face had been within it): kept only when its faces stay
+        // within the guard, or within their deviation before, unless it
+        // removes an angle under 10 degrees (a sliver costs more).
+        const bool guarded = guard_ > 0 && surf && project && !(star_min_cos(v, pv) > sliver_cos);
+        const double before = guarded ? star_deviation(v) : 0.;
         put(pos_, v, bp);
         put(thint_, v, bth);
-        if (!uniform_ && surf && project) {
+        if (guarded) {
           const double after = star_deviation(v);
-          if (after > std::max(eps_, before)) {
+          if (after > std::max(guard_, before)) {
             put(pos_, v, pv);
             put(thint_, v, th);
             continue;
@@ -1144,66 +1150,6 @@ public:
       }
     }
     return bad;
-  }
-
-  /// lowers the sizing where the input lies farther than `limit` from the
-  /// mesh: a tip, a claw or a thin ridge that the mesh cuts off. The faces
-  /// there lie close to some part of the input, so refine_deviating_faces
-  /// (mesh to input) does not see it; the Hausdorff distance measures both
-  /// ways. Each input point is looked up in a tree of the mesh's triangles;
-  /// around each one farther than `limit`, the mesh's nearest face and the
-  /// input near the point get the length that brings the deviation to about
-  /// `goal` (quadratic in the edge length, as for the faces). Returns the
-  /// number of such input points.
-  std::size_t refine_near_distant_input(double limit, double goal, double lmin)
-  {
-    using Kernel = CGAL::Epick;
-    using Triangles = std::vector<Kernel::Triangle_3>;
-    using Tree = Aabb_tree<Kernel, Aabb_triangle_primitive<Kernel, Triangles::const_iterator>>;
-    if (!ref.has_surface() || ref.points.empty()) return 0;
-    std::vector<halfedge_descriptor> fs;
-    Triangles tris;
-    for (face_descriptor f : faces(tm_)) {
-      const halfedge_descriptor h = halfedge(f, tm_);
-      const Vec3 a = get(pos_, source(h, tm_)), b = get(pos_, target(h, tm_)),
-                 c = get(pos_, target(next(h, tm_), tm_));
-      // no tiny triangles in a tree (Reference_surface::is_large)
-      if (!(squared_norm(triangle_normal(a, b, c)) > Reference_surface::tiny)) continue;
-      fs.push_back(h);
-      tris.emplace_back(Kernel::Point_3(a[0], a[1], a[2]), Kernel::Point_3(b[0], b[1], b[2]),
-                        Kernel::Point_3(c[0], c[1], c[2]));
-    }
-    if (tris.empty()) return 0;
-    Tree tree(tris.cbegin(), tris.cend());
-    tree.build();
-    tree.accelerate_distance_queries();  // before the parallel queries: they only read it
-    const std::size_t n = ref.points.size();
-    std::vector<double> dist(n, 0.);
-    std::vector<std::size_t> nearest(n, 0);
-    for_each_index(n, [&](std::size_t i) {
-      const Vec3& q = ref.points[i];
-      if (!is_finite(q)) return;
-      const auto pp = tree.closest_point_and_primitive(Kernel::Point_3(q[0], q[1], q[2]));
-      dist[i] = std::sqrt(squared_norm(to_vec3(pp.first) - q));
-      nearest[i] = static_cast<std::size_t>(pp.second - tris.cbegin());
-    });
-    std::size_t far = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!(dist[i] > limit)) continue;
-      ++far;
-      const halfedge_descriptor h = fs[nearest[i]];
-      const vertex_descriptor v3[3] = {source(h, tm_), target(h, tm_), target(next(h, tm_), tm_)};
-      const Vec3 p[3] = {get(pos_, v3[0]), get(pos_, v3[1]), get(pos_, v3[2])};
-      const double longest = std::sqrt(
-          std::max({squared_norm(p[1] - p[0]), squared_norm(p[2] - p[1]), squared_norm(p[0] - p[2])}));
-      const double L = std::max(lmin, longest * std::sqrt(goal / dist[i]));
-      for (vertex_descriptor v : v3)
-        if (get(size_, v) > L) put(size_, v, L);
-      const int r = static_cast<int>(i);
-      if (ref.star_begin[r] < ref.star_begin[r + 1])
-        ref.lower_sizing_near(ref.points[i], longest, ref.star[ref.star_begin[r]], L);
-    }
-    return far;
   }
 
   /// runs `iterations` rounds; `stop()` is polled between phases. Returns
