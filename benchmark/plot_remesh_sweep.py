@@ -6,7 +6,15 @@ the table of the sweep in Markdown.
 
     mrepair-bench remesh-adaptive-sweep MESH --json sweep.json
     python3 benchmark/plot_remesh_sweep.py sweep.json [more.json ...] --out doc/images \
-        [--name armadillo ...] [--table table.md]
+        [--name armadillo ...] [--table table.md] [--cgal-from cgal6.json ...]
+
+Besides each mesh's table it prints, per mrepair variant and tolerance,
+mrepair's Hausdorff distance over CGAL's curve interpolated (log-log) at
+mrepair's face count (below 1: better; "beyond" where the count lies outside
+CGAL's range, then the nearest end's slope is used). --cgal-from takes CGAL's
+variant from another run of the same mesh (one file per JSON, in order): a
+harness built on 5.5 has no CGAL column, and mrepair's figures are the same on
+both releases, so a 5.5 run can be set beside a stored 6.x one.
 
 Needs matplotlib (Debian: python3-matplotlib) for the PNGs; --no-plot prints
 the table only.
@@ -71,6 +79,42 @@ def table(data, name):
     return "\n".join(lines) + "\n"
 
 
+def curve_ratios(data, name):
+    """mrepair's Hausdorff over CGAL's curve at mrepair's face count"""
+    import math
+    cgal = next((v for v in data["variants"] if v["name"].startswith("CGAL")), None)
+    pts = sorted((r["faces"], r["hausdorff_rel"]) for r in runs_of(cgal or {})
+                 if isinstance(r.get("faces"), float) and isinstance(r.get("hausdorff_rel"), float))
+    if len(pts) < 2:
+        return ""
+
+    def at(faces):
+        x = math.log(faces)
+        xs = [math.log(f) for f, _ in pts]
+        ys = [math.log(h) for _, h in pts]
+        i = 0
+        while i + 2 < len(xs) and x > xs[i + 1]:
+            i += 1
+        t = (x - xs[i]) / (xs[i + 1] - xs[i])
+        return math.exp(ys[i] + t * (ys[i + 1] - ys[i])), not (xs[0] <= x <= xs[-1])
+
+    lines = [f"**{name}**: mrepair's Hausdorff / CGAL's curve at the same face count", ""]
+    variants = [v for v in data["variants"] if v["name"].startswith("mrepair") and runs_of(v)]
+    tols = [r.get("tolerance_rel") for r in runs_of(variants[0])] if variants else []
+    lines.append("| variant | " + " | ".join(f"{t:g}" for t in tols) + " |")
+    lines.append("|" + "---|" * (len(tols) + 1))
+    for v in variants:
+        cells = []
+        for r in runs_of(v):
+            if not isinstance(r.get("faces"), float) or not isinstance(r.get("hausdorff_rel"), float):
+                cells.append("")
+                continue
+            h, beyond = at(r["faces"])
+            cells.append(f"{r['hausdorff_rel'] / h:.2f}" + (" (beyond)" if beyond else ""))
+        lines.append(f"| {v['name']} | " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
 def plot(data, name, out_dir):
     import matplotlib
     matplotlib.use("Agg")
@@ -114,13 +158,22 @@ def main():
     p.add_argument("--name", action="append", help="mesh name per JSON file (default: input file stem)")
     p.add_argument("--table", help="also write the Markdown tables here")
     p.add_argument("--no-plot", action="store_true")
+    p.add_argument("--cgal-from", action="append", help="take CGAL's variant from this run (per JSON file)")
     a = p.parse_args()
     tables = []
     for i, path in enumerate(a.json):
         with open(path) as f:
             data = json.load(f)
+        if a.cgal_from and i < len(a.cgal_from):
+            with open(a.cgal_from[i]) as f:
+                other = json.load(f)
+            theirs = [v for v in other["variants"] if v["name"].startswith("CGAL")]
+            data["variants"] = [v for v in data["variants"] if not v["name"].startswith("CGAL")] + theirs
+            data["mrepair_built_with_cgal"] = data.get("cgal", "?")
+            data["cgal"] = other.get("cgal", "?")
         name = a.name[i] if a.name and i < len(a.name) else os.path.splitext(os.path.basename(data["input"]))[0]
         tables.append(table(data, name))
+        tables.append(curve_ratios(data, name))
         if not a.no_plot:
             os.makedirs(a.out, exist_ok=True)
             print(f"wrote {plot(data, name, a.out)}", file=sys.stderr)
