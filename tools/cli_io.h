@@ -134,15 +134,7 @@ inline bool write_binary(const Arguments& a, const Io_result& input, const std::
 template <class PolygonMesh>
 bool triangulate_polygons(PolygonMesh& mesh, Report& report, std::string& error)
 {
-  bool triangles_only = true;
-  for (auto f : faces(mesh)) {
-    const auto h = halfedge(f, mesh);
-    if (next(next(next(h, mesh), mesh), mesh) != h) {
-      triangles_only = false;
-      break;
-    }
-  }
-  if (triangles_only) return true;
+  if (CGAL::is_triangle_mesh(mesh)) return true;
   const Triangulation_result t = mrepair::triangulate_polygons(mesh);
   if (t.polygons > 0) t.to_report(report.section("triangulation"));
   if (t.status == Status::ok) return true;
