@@ -202,10 +202,13 @@ Remeshing_result adaptive_remesh(const FaceRange& face_range, TriangleMesh& tm, 
 
 /// \ingroup mrepair_remesh
 /// adaptive remeshing to `target_faces` faces (within 2% on closed smooth
-/// shapes): the curvature sizing field of `adaptive_remesh`, at the tolerance
-/// whose field predicts `target_faces` (bisection on the predicted count), with
-/// the same error control; then the field is scaled by sqrt(faces / target)
-/// until the count is within 1.5%, 3 iterations per correction. Splits plus
+/// shapes): the curvature sizing field and the error control of
+/// `adaptive_remesh`, at the tolerance whose field predicts `target_faces`
+/// once corrected by a 4-iteration pilot (which measures how far the count
+/// reached departs from the prediction on this shape); then the field is
+/// scaled by sqrt(faces / target) until the count is within 1.5%, 3
+/// iterations per correction. So a count gets about the accuracy the
+/// adaptive mode gives at that count. Splits plus
 /// collapses are capped at 100 per input and per target face: a surface far
 /// thinner than the target length in one direction returns `partial` (valid
 /// mesh, count not reached). `res.tolerance` is the tolerance found.
