@@ -669,6 +669,18 @@ TEST(Remesh_armadillo, coarse_remeshing_keeps_no_self_intersections)
   EXPECT_FALSE(PMP::does_self_intersect<CGAL::Parallel_if_available_tag>(m));
 }
 
+// armadillo from CGAL's data (false when it is not there) and its bounding-box diagonal
+bool read_armadillo(Surface_mesh& m, double& diag)
+{
+  std::ifstream in(std::string(MREPAIR_CGAL_DATA_DIR) + "/armadillo.off");
+  if (!in || !CGAL::IO::read_OFF(in, m)) return false;
+  CGAL::Bbox_3 box;
+  for (const Point& p : m.points()) box += p.bbox();
+  diag = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                   CGAL::square(box.zmax() - box.zmin()));
+  return true;
+}
+
 // Issue 52: adaptive remeshing of armadillo at the coarse end of the sweep
 // (lengths in [tolerance, 0.05 x diagonal]). Before, the final min-angle pass
 // moved vertices so that their faces swung off the input: the mesh's largest
@@ -680,13 +692,9 @@ TEST(Remesh_armadillo, coarse_remeshing_keeps_no_self_intersections)
 // tests cover Polyhedron_3).
 TEST(Remesh_armadillo, adaptive_min_angle_pass_stays_within_the_tolerance)
 {
-  std::ifstream in(std::string(MREPAIR_CGAL_DATA_DIR) + "/armadillo.off");
   Surface_mesh input;
-  if (!in || !CGAL::IO::read_OFF(in, input)) GTEST_SKIP() << "armadillo.off not available";
-  CGAL::Bbox_3 box;
-  for (const Point& p : input.points()) box += p.bbox();
-  const double diag = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
-                                CGAL::square(box.zmax() - box.zmin()));
+  double diag = 0;
+  if (!read_armadillo(input, diag)) GTEST_SKIP() << "armadillo.off not available";
   for (const auto& [relative, bound] : {std::pair<double, double>{0.004, 1.6}, {0.008, 1.25}}) {
     Surface_mesh m = input;
     const double tolerance = relative * diag;
@@ -710,13 +718,9 @@ TEST(Remesh_armadillo, adaptive_min_angle_pass_stays_within_the_tolerance)
 // 0.0029 both ways. Held to CGAL 6's 0.0037 each way.
 TEST(Remesh_armadillo, face_count_mode_is_as_accurate_as_the_adaptive_mode)
 {
-  std::ifstream in(std::string(MREPAIR_CGAL_DATA_DIR) + "/armadillo.off");
   Surface_mesh input;
-  if (!in || !CGAL::IO::read_OFF(in, input)) GTEST_SKIP() << "armadillo.off not available";
-  CGAL::Bbox_3 box;
-  for (const Point& p : input.points()) box += p.bbox();
-  const double diag = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
-                                CGAL::square(box.zmax() - box.zmin()));
+  double diag = 0;
+  if (!read_armadillo(input, diag)) GTEST_SKIP() << "armadillo.off not available";
   Surface_mesh m = input;
   const std::size_t target = 19984;
   auto r = mrepair::remesh_to_face_count<CGAL::Parallel_if_available_tag>(
