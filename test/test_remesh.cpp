@@ -783,5 +783,70 @@ TEST(Remesh_issue_17, reference_tree_built_on_first_use_gives_the_closest_point)
   }
 }
 
+// Issue 49: the uniform remesher's projection walks from its hint across the
+// input's edges (and through a corner's star) instead of evaluating whole
+// vertex stars. From a
+// hint one or two triangles away, on a bumpy closed surface and on an open
+// one (its boundary edges have no triangle across), it must land on the
+// closest point of the whole input for points near the surface, as vertices
+// are after a relaxation step.
+TEST(Remesh_issue_49, projection_walk_finds_the_closest_point_near_the_surface)
+{
+  namespace R = mrepair::internal::remesh;
+  namespace I = mrepair::internal;
+  using I::Vec3;
+  for (const bool open : {false, true}) {
+    const Soup s = icosphere(4, 1.0);
+    R::Reference_surface ref;
+    std::mt19937 rng(49);
+    std::uniform_real_distribution<double> bump(-0.01, 0.01);
+    for (const Point& p : s.points) {
+      const Vec3 x = I::to_vec3(p);
+      ref.points.push_back(I::mul(x, 1. + bump(rng)));
+    }
+    for (const Polygon& f : s.polygons) {
+      const std::array<int, 3> t{int(f[0]), int(f[1]), int(f[2])};
+      // the open case keeps the faces above z = -0.3: a boundary loop below
+      if (open && ref.points[t[0]][2] + ref.points[t[1]][2] + ref.points[t[2]][2] < -0.9) continue;
+      ref.triangles.push_back(t);
+    }
+    ref.on_line.assign(ref.points.size(), 0);
+    ref.sizing.assign(ref.points.size(), 0.05);
+    ref.walk_edges = true;
+    ref.build();
+    ASSERT_TRUE(ref.has_surface());
+    std::uniform_real_distribution<double> unit(0., 1.), offset(-0.02, 0.02);
+    std::uniform_int_distribution<int> pick(0, int(ref.triangles.size()) - 1);
+    std::size_t walked_far = 0;
+    for (int i = 0; i < 3000; ++i) {
+      // a point of a random triangle, moved by ~ a third of an edge (0.075 here)
+      const int t0 = pick(rng);
+      const auto& t = ref.triangles[t0];
+      double a = unit(rng), b = unit(rng);
+      if (a + b > 1) { a = 1 - a; b = 1 - b; }
+      Vec3 q = I::add(I::add(I::mul(ref.points[t[0]], 1 - a - b), I::mul(ref.points[t[1]], a)),
+                      I::mul(ref.points[t[2]], b));
+      q = I::add(q, Vec3{{offset(rng), offset(rng), offset(rng)}});
+      double best = std::numeric_limits<double>::infinity();
+      for (const auto& u : ref.triangles) {
+        double x, y, z;
+        const Vec3 p = R::Reference_surface::closest_on_triangle(q, ref.points[u[0]], ref.points[u[1]],
+                                                               ref.points[u[2]], x, y, z);
+        best = std::min(best, I::squared_norm(I::sub(p, q)));
+      }
+      // the hint: a triangle across an edge of t0 (or t0 on the boundary)
+      const int start = ref.neighbour[t0][i % 3] >= 0 ? ref.neighbour[t0][i % 3] : t0;
+      int hint = start;
+      double size = 0;
+      // a tiny accepted distance would send every query to the tree: accept all
+      const Vec3 c = ref.project_surface(q, size, hint, 10.);
+      EXPECT_NEAR(I::distance(c, q), std::sqrt(best), 1e-12) << (open ? "open " : "closed ") << i;
+      EXPECT_NEAR(size, 0.05, 1e-12);
+      if (hint != start) ++walked_far;
+    }
+    EXPECT_GT(walked_far, 0u);  // the walk moved off its hint
+  }
+}
+
 } // namespace remesh_tests
 } // namespace

@@ -61,6 +61,14 @@ public:
   int smoothing_passes = 3;                  // of the curvature before sizing
 
   std::vector<int> star_begin, star;  // triangles around each point (CSR)
+  std::vector<std::array<int, 3>> neighbour;  // triangle across edge (t[k], t[k+1]), or -1
+  // The projection walks across edges (set_uniform sets it: the uniform remesher's
+  // vertices stay within a fraction of an input edge of the input) instead
+  // of descending through whole vertex stars. The adaptive modes keep the
+  // descent: their coarse faces sample points many input edges off the
+  // input, where its wider steps found other minima, and their measured
+  // distances on armadillo (test_remesh) are those of the descent.
+  bool walk_edges = false;
 
   /// builds both trees and the vertex stars; call once after filling
   /// points/triangles/segments.
@@ -76,6 +84,24 @@ public:
       for (std::size_t i = 0; i < triangles.size(); ++i)
         for (int k = 0; k < 3; ++k) star[fill[triangles[i][k]]++] = static_cast<int>(i);
     }
+    // the triangle across each edge, for the projection's walk: -1 on a
+    // boundary edge and on an edge that more than two triangles share (the
+    // walk then looks at the vertex stars instead)
+    neighbour.assign(triangles.size(), {-1, -1, -1});
+    parallel_for_index(neighbour.size(), 4096, [&](std::size_t i) {
+      const auto& t = triangles[i];
+      for (int k = 0; k < 3; ++k) {
+        const int a = t[k], b = t[(k + 1) % 3];
+        int across = -1, found = 0;
+        for (int j = star_begin[a]; j < star_begin[a + 1]; ++j) {
+          const int o = star[j];
+          if (o == int(i)) continue;
+          const auto& to = triangles[o];
+          if (to[0] == b || to[1] == b || to[2] == b) { across = o; ++found; }
+        }
+        neighbour[i][k] = found == 1 ? across : -1;
+      }
+    });
     // the tiny triangles and segments stay out of the trees (see is_large)
     std::vector<char> large(triangles.size());
     parallel_for_index(triangles.size(), 4096, [&](std::size_t i) { large[i] = is_large(i); });
@@ -186,50 +212,101 @@ public:
     return a + v * ab + w * ac;
   }
 
-  /// closest point to `q` found by descending from triangle `hint` through
-  /// the vertex stars of the input (vertices move a fraction of an edge per
-  /// iteration, so this is local); falls back to the AABB tree when there is
-  /// no hint or the local answer is farther than `max_dist`.
+  /// closest point to `q` found locally from triangle `hint`, by the walk
+  /// (`walk_edges`) or the descent through vertex stars (vertices move a
+  /// fraction of an edge per iteration, so both are local);
+  /// falls back to the AABB tree when there is no hint or the local answer
+  /// is farther than `max_dist`.
   Vec3 project_surface(const Vec3& q, double& size, int& hint, double max_dist) const
   {
     if (hint >= 0 && hint < int(triangles.size())) {
-      int cur = hint, best = -1;
-      double bd = std::numeric_limits<double>::infinity(), bu = 0, bv = 0, bw = 0;
-      Vec3 bp{};
-      // Points whose star has been evaluated: a triangle with such a corner
-      // was evaluated already, and evaluating it again never changes the
-      // strict minimum (neighbouring stars overlap in most of their triangles).
-      int done[48];
-      int ndone = 0;
-      auto is_done = [&](int p) {
-        for (int i = 0; i < ndone; ++i)
-          if (done[i] == p) return true;
-        return false;
-      };
-      for (int step = 0; step < 16; ++step) {
-        int before = best;
-        for (int k = 0; k < 3; ++k) {
-          int pv = triangles[cur][k];
-          if (is_done(pv)) continue;
-          for (int j = star_begin[pv]; j < star_begin[pv + 1]; ++j) {
-            int t = star[j];
-            const auto& tr = triangles[t];
-            if (is_done(tr[0]) || is_done(tr[1]) || is_done(tr[2])) continue;
-            double u, v, w;
-            Vec3 p = closest_on_triangle(q, points[tr[0]], points[tr[1]], points[tr[2]], u, v, w);
-            double d = squared_norm(p - q);
-            if (d < bd) { bd = d; best = t; bp = p; bu = u; bv = v; bw = w; }
+      if (walk_edges) {
+        // A walk from the hint to a triangle none of whose neighbours is
+        // closer: across the edges of the current triangle, and through the
+        // stars of its corners when the closest point lies on its edge or
+        // corner (a corner joins triangles that share no edge with it). Vertices
+        // move a fraction of an edge per iteration, so the walk is a few
+        // steps: 4 evaluations where the closest point lies inside a
+        // triangle, against the ~25 of a descent through whole vertex stars.
+        // A point on an edge or a corner also reads the stars of its corners.
+        struct Best { int t; double d, u, v, w; Vec3 p; };
+        auto evaluate = [&](int t) {
+          const auto& tr = triangles[t];
+          Best b{t, 0, 0, 0, 0, {}};
+          b.p = closest_on_triangle(q, points[tr[0]], points[tr[1]], points[tr[2]], b.u, b.v, b.w);
+          b.d = squared_norm(b.p - q);
+          return b;
+        };
+        Best best = evaluate(hint);
+        for (int step = 0; step < 64; ++step) {
+          const int from = best.t;
+          const auto& tr = triangles[from];
+          const auto& nb = neighbour[from];
+          auto consider = [&](int t) {
+            if (t < 0 || t == from) return;
+            const Best b = evaluate(t);
+            if (b.d < best.d) best = b;
+          };
+          for (int k = 0; k < 3; ++k) consider(nb[k]);
+          // the closest point on an edge or at a corner of its triangle: a
+          // triangle that shares only that corner (or a corner of that edge)
+          // can be closer, where the surface folds towards the point; the
+          // stars of those corners (the edge may have no single neighbour too)
+          if (best.t != from) continue;
+          const double bc[3] = {best.u, best.v, best.w};
+          if (bc[0] > 0. && bc[1] > 0. && bc[2] > 0.) break;
+          for (int k = 0; k < 3; ++k) {
+            if (!(bc[k] > 0.)) continue;
+            const int pv = tr[k];
+            for (int j = star_begin[pv]; j < star_begin[pv + 1]; ++j) consider(star[j]);
           }
-          if (ndone < 48) done[ndone++] = pv;  // when full, stars are evaluated again
+          if (best.t == from) break;
         }
-        if (best == before) break;
-        cur = best;
-      }
-      if (best >= 0 && bd <= max_dist * max_dist) {
-        hint = best;
-        const auto& t = triangles[best];
-        size = bu * sizing[t[0]] + bv * sizing[t[1]] + bw * sizing[t[2]];
-        return bp;
+        if (best.d <= max_dist * max_dist) {
+          hint = best.t;
+          const auto& t = triangles[best.t];
+          size = best.u * sizing[t[0]] + best.v * sizing[t[1]] + best.w * sizing[t[2]];
+          return best.p;
+        }
+      } else {
+        int cur = hint, best = -1;
+        double bd = std::numeric_limits<double>::infinity(), bu = 0, bv = 0, bw = 0;
+        Vec3 bp{};
+        // Points whose star has been evaluated: a triangle with such a corner
+        // was evaluated already, and evaluating it again never changes the
+        // strict minimum (neighbouring stars overlap in most of their triangles).
+        int done[48];
+        int ndone = 0;
+        auto is_done = [&](int p) {
+          for (int i = 0; i < ndone; ++i)
+            if (done[i] == p) return true;
+          return false;
+        };
+        for (int step = 0; step < 16; ++step) {
+          int before = best;
+          for (int k = 0; k < 3; ++k) {
+            int pv = triangles[cur][k];
+            if (is_done(pv)) continue;
+            for (int j = star_begin[pv]; j < star_begin[pv + 1]; ++j) {
+              int t = star[j];
+              const auto& tr = triangles[t];
+              if (is_done(tr[0]) || is_done(tr[1]) || is_done(tr[2])) continue;
+              double u, v, w;
+              Vec3 p = closest_on_triangle(q, points[tr[0]], points[tr[1]], points[tr[2]], u, v, w);
+              double d = squared_norm(p - q);
+              if (d < bd) { bd = d; best = t; bp = p; bu = u; bv = v; bw = w; }
+            }
+            if (ndone < 48) done[ndone++] = pv;  // when full, stars are evaluated again
+          }
+          if (best == before) break;
+          cur = best;
+        }
+        if (best >= 0 && bd <= max_dist * max_dist) {
+          hint = best;
+          const auto& t = triangles[best];
+          size = bu * sizing[t[0]] + bv * sizing[t[1]] + bw * sizing[t[2]];
+          return bp;
+        }
       }
     }
     return project_surface_tree(q, size, hint);

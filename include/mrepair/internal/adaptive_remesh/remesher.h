@@ -260,6 +260,7 @@ public:
   void set_uniform(double L)
   {
     uniform_ = true;
+    ref.walk_edges = true;
     L_ = L;
     ref.sizing.assign(ref.points.size(), L);
     for (vertex_descriptor v : vertices(tm_)) put(size_, v, L);
@@ -268,6 +269,7 @@ public:
   void set_adaptive(double eps, double lmin, double lmax, double gamma)
   {
     uniform_ = false;
+    ref.walk_edges = false;
     ref.compute_adaptive_sizing(eps, lmin, lmax, gamma);
     for (vertex_descriptor v : vertices(tm_)) {
       int r = get(ref_, v);
@@ -977,14 +979,32 @@ public:
     return n;
   }
 
-  void relax_and_project(bool project)
+  struct Relax_buffers
   {
     std::vector<vertex_descriptor> vs;
+    std::vector<Vec3> np, normal, old;
+    std::vector<double> ns;
+    std::vector<char> bad, undone;
+  };
+  Relax_buffers relax_buffers_;
+
+  void relax_and_project(bool project)
+  {
+    // the buffers live across iterations: at 1M faces, fresh ones cost
+    // their page faults (~40 MB) every iteration
+    auto& vs = relax_buffers_.vs;
+    vs.clear();
     vertices_where(vs, [&](vertex_descriptor v) {
       return get(kind_, v) == V_FREE || (relax_lines_ && get(kind_, v) == V_LINE);
     });
-    std::vector<Vec3> np(vs.size()), normal(vs.size()), old(vs.size());
-    std::vector<double> ns(vs.size());
+    auto& np = relax_buffers_.np;
+    auto& normal = relax_buffers_.normal;
+    auto& old = relax_buffers_.old;
+    auto& ns = relax_buffers_.ns;
+    np.resize(vs.size());
+    normal.resize(vs.size());
+    old.resize(vs.size());
+    ns.resize(vs.size());
     const bool lines = ref.has_lines(), surf = ref.has_surface();
     for_each_index(vs.size(), [&](std::size_t i) {
       vertex_descriptor v = vs[i];
@@ -1056,7 +1076,10 @@ public:
     // neighbour that was checked against the undone position: check the
     // kept moves again until none folds (each round only undoes more, and
     // with every move undone the mesh is the one before).
-    std::vector<char> bad(vs.size(), 0), undone(vs.size(), 0);
+    auto& bad = relax_buffers_.bad;
+    auto& undone = relax_buffers_.undone;
+    bad.assign(vs.size(), 0);
+    undone.assign(vs.size(), 0);
     auto check = [&](std::size_t i) {
       if (undone[i]) return;
       vertex_descriptor v = vs[i];
