@@ -733,6 +733,21 @@ TEST(Remesh_armadillo, face_count_mode_is_as_accurate_as_the_adaptive_mode)
   EXPECT_LT(one_sided_distance(input, m), 0.0037 * diag) << "input to mesh";
 }
 
+// the distance from `q` to the nearest of all triangles of `ref` (brute force)
+double distance_by_every_triangle(const mrepair::internal::remesh::Reference_surface& ref,
+                                  const mrepair::internal::Vec3& q)
+{
+  namespace I = mrepair::internal;
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& t : ref.triangles) {
+    double u, v, w;
+    const I::Vec3 p = mrepair::internal::remesh::Reference_surface::closest_on_triangle(
+        q, ref.points[t[0]], ref.points[t[1]], ref.points[t[2]], u, v, w);
+    best = std::min(best, I::squared_norm(I::sub(p, q)));
+  }
+  return std::sqrt(best);
+}
+
 // Issue 17: the reference surface builds its triangle tree on the first
 // projection that needs it (no hint, or the local descent landing farther
 // than asked), from several threads at once in the parallel relaxation.
@@ -750,16 +765,7 @@ TEST(Remesh_issue_17, reference_tree_built_on_first_use_gives_the_closest_point)
   ref.sizing.assign(ref.points.size(), 0.1);
   ref.build();
   ASSERT_TRUE(ref.has_surface());
-  auto nearest = [&](const Vec3& q) {
-    double best = std::numeric_limits<double>::infinity();
-    for (const auto& t : ref.triangles) {
-      double u, v, w;
-      const Vec3 p = R::Reference_surface::closest_on_triangle(q, ref.points[t[0]], ref.points[t[1]],
-                                                             ref.points[t[2]], u, v, w);
-      best = std::min(best, I::squared_norm(I::sub(p, q)));
-    }
-    return std::sqrt(best);
-  };
+  auto nearest = [&](const Vec3& q) { return distance_by_every_triangle(ref, q); };
   const std::size_t n = 4000;
   std::vector<Vec3> q(n), by_tree(n), by_descent(n);
   std::mt19937 rng(17);
@@ -827,20 +833,14 @@ TEST(Remesh_issue_49, projection_walk_finds_the_closest_point_near_the_surface)
       Vec3 q = I::add(I::add(I::mul(ref.points[t[0]], 1 - a - b), I::mul(ref.points[t[1]], a)),
                       I::mul(ref.points[t[2]], b));
       q = I::add(q, Vec3{{offset(rng), offset(rng), offset(rng)}});
-      double best = std::numeric_limits<double>::infinity();
-      for (const auto& u : ref.triangles) {
-        double x, y, z;
-        const Vec3 p = R::Reference_surface::closest_on_triangle(q, ref.points[u[0]], ref.points[u[1]],
-                                                               ref.points[u[2]], x, y, z);
-        best = std::min(best, I::squared_norm(I::sub(p, q)));
-      }
+      const double best = distance_by_every_triangle(ref, q);
       // the hint: a triangle across an edge of t0 (or t0 on the boundary)
       const int start = ref.neighbour[t0][i % 3] >= 0 ? ref.neighbour[t0][i % 3] : t0;
       int hint = start;
       double size = 0;
       // a tiny accepted distance would send every query to the tree: accept all
       const Vec3 c = ref.project_surface(q, size, hint, 10.);
-      EXPECT_NEAR(I::distance(c, q), std::sqrt(best), 1e-12) << (open ? "open " : "closed ") << i;
+      EXPECT_NEAR(I::distance(c, q), best, 1e-12) << (open ? "open " : "closed ") << i;
       EXPECT_NEAR(size, 0.05, 1e-12);
       if (hint != start) ++walked_far;
     }
