@@ -238,7 +238,8 @@ public:
           return b;
         };
         Best best = evaluate(hint);
-        for (int step = 0; step < 64; ++step) {
+        bool converged = false;
+        for (int step = 0; step < 64 && !converged; ++step) {
           const int from = best.t;
           const auto& tr = triangles[from];
           const auto& nb = neighbour[from];
@@ -254,15 +255,16 @@ public:
           // stars of those corners (the edge may have no single neighbour too)
           if (best.t != from) continue;
           const double bc[3] = {best.u, best.v, best.w};
-          if (bc[0] > 0. && bc[1] > 0. && bc[2] > 0.) break;
+          if (bc[0] > 0. && bc[1] > 0. && bc[2] > 0.) { converged = true; break; }
           for (int k = 0; k < 3; ++k) {
             if (!(bc[k] > 0.)) continue;
             const int pv = tr[k];
             for (int j = star_begin[pv]; j < star_begin[pv + 1]; ++j) consider(star[j]);
           }
-          if (best.t == from) break;
+          converged = best.t == from;
         }
-        if (best.d <= max_dist * max_dist) {
+        // a walk that ran out of steps is no minimum: the tree answers
+        if (converged && best.d <= max_dist * max_dist) {
           hint = best.t;
           const auto& t = triangles[best.t];
           size = best.u * sizing[t[0]] + best.v * sizing[t[1]] + best.w * sizing[t[2]];
@@ -282,6 +284,7 @@ public:
             if (done[i] == p) return true;
           return false;
         };
+        bool converged = false;
         for (int step = 0; step < 16; ++step) {
           int before = best;
           for (int k = 0; k < 3; ++k) {
@@ -298,10 +301,15 @@ public:
             }
             if (ndone < 48) done[ndone++] = pv;  // when full, stars are evaluated again
           }
-          if (best == before) break;
+          if (best == before) { converged = true; break; }
           cur = best;
         }
-        if (best >= 0 && bd <= max_dist * max_dist) {
+        // A descent that ran out of steps is no minimum (a sample of a coarse
+        // face many input edges from its hint, on a fine input): its point
+        // overstated the face's deviation, and the error control refined a
+        // 1M-face scan at 0.002 x diagonal to 17,456 faces within 0.18 x the
+        // tolerance. The tree answers instead.
+        if (converged && best >= 0 && bd <= max_dist * max_dist) {
           hint = best;
           const auto& t = triangles[best];
           size = bu * sizing[t[0]] + bv * sizing[t[1]] + bw * sizing[t[2]];
