@@ -733,6 +733,16 @@ TEST(Remesh_armadillo, face_count_mode_is_as_accurate_as_the_adaptive_mode)
   EXPECT_LT(one_sided_distance(input, m), 0.0037 * diag) << "input to mesh";
 }
 
+// `ref` made of the triangles of `s`, every point off the lines, one sizing
+void build_reference(mrepair::internal::remesh::Reference_surface& ref, const Soup& s, double sizing)
+{
+  for (const Point& p : s.points) ref.points.push_back(mrepair::internal::to_vec3(p));
+  for (const Polygon& f : s.polygons) ref.triangles.push_back({int(f[0]), int(f[1]), int(f[2])});
+  ref.on_line.assign(ref.points.size(), 0);
+  ref.sizing.assign(ref.points.size(), sizing);
+  ref.build();
+}
+
 // the distance from `q` to the nearest of all triangles of `ref` (brute force)
 double distance_by_every_triangle(const mrepair::internal::remesh::Reference_surface& ref,
                                   const mrepair::internal::Vec3& q)
@@ -759,11 +769,7 @@ TEST(Remesh_issue_17, reference_tree_built_on_first_use_gives_the_closest_point)
   using I::Vec3;
   const Soup s = icosphere(3, 1.0);
   R::Reference_surface ref;
-  for (const Point& p : s.points) ref.points.push_back(I::to_vec3(p));
-  for (const Polygon& f : s.polygons) ref.triangles.push_back({int(f[0]), int(f[1]), int(f[2])});
-  ref.on_line.assign(ref.points.size(), 0);
-  ref.sizing.assign(ref.points.size(), 0.1);
-  ref.build();
+  build_reference(ref, s, 0.1);
   ASSERT_TRUE(ref.has_surface());
   auto nearest = [&](const Vec3& q) { return distance_by_every_triangle(ref, q); };
   const std::size_t n = 4000;
@@ -818,8 +824,8 @@ TEST(Remesh_issue_49, projection_walk_finds_the_closest_point_near_the_surface)
     }
     ref.on_line.assign(ref.points.size(), 0);
     ref.sizing.assign(ref.points.size(), 0.05);
-    ref.walk_edges = true;
     ref.build();
+    ref.set_walk_edges(true);
     ASSERT_TRUE(ref.has_surface());
     std::uniform_real_distribution<double> unit(0., 1.), offset(-0.02, 0.02);
     std::uniform_int_distribution<int> pick(0, int(ref.triangles.size()) - 1);
@@ -862,12 +868,8 @@ TEST(Remesh_issue_52, projection_far_from_its_hint_gives_the_closest_point)
   const Soup s = icosphere(5, 1.0);  // 20,480 triangles, edges ~0.04
   for (const bool walk : {false, true}) {
     R::Reference_surface ref;
-    for (const Point& p : s.points) ref.points.push_back(I::to_vec3(p));
-    for (const Polygon& f : s.polygons) ref.triangles.push_back({int(f[0]), int(f[1]), int(f[2])});
-    ref.on_line.assign(ref.points.size(), 0);
-    ref.sizing.assign(ref.points.size(), 0.1);
-    ref.walk_edges = walk;
-    ref.build();
+    build_reference(ref, s, 0.1);
+    ref.set_walk_edges(walk);
     std::mt19937 rng(52);
     std::normal_distribution<double> g(0., 1.);
     for (int i = 0; i < 200; ++i) {

@@ -48,6 +48,7 @@ class Reference_surface
   mutable std::atomic<bool> tri_tree_ready_{false};
   mutable std::mutex tri_tree_mutex_;
   std::unique_ptr<Seg_tree> seg_tree_;
+  bool walk_edges_ = false;
 
   static K::Point_3 kp(const Vec3& p) { return K::Point_3(p[0], p[1], p[2]); }
   static Vec3 vp(const K::Point_3& p) { return to_vec3(p); }
@@ -62,31 +63,19 @@ public:
 
   std::vector<int> star_begin, star;  // triangles around each point (CSR)
   std::vector<std::array<int, 3>> neighbour;  // triangle across edge (t[k], t[k+1]), or -1
-  // The projection walks across edges (set_uniform sets it: the uniform remesher's
-  // vertices stay within a fraction of an input edge of the input) instead
-  // of descending through whole vertex stars. The adaptive modes keep the
-  // descent: their coarse faces sample points many input edges off the
-  // input, where its wider steps found other minima, and their measured
-  // distances on armadillo (test_remesh) are those of the descent.
-  bool walk_edges = false;
 
-  /// builds both trees and the vertex stars; call once after filling
-  /// points/triangles/segments.
-  void build()
+  /// The projection walks across edges (the uniform remesher: its vertices
+  /// stay within a fraction of an input edge of the input) instead of
+  /// descending through whole vertex stars. The adaptive modes keep the
+  /// descent: their coarse faces sample points many input edges off the
+  /// input, and their measured distances on armadillo (test_remesh) are the
+  /// descent's. Call after build(), not during projections.
+  void set_walk_edges(bool on)
   {
-    star_begin.assign(points.size() + 1, 0);
-    for (const auto& t : triangles)
-      for (int k = 0; k < 3; ++k) ++star_begin[t[k] + 1];
-    for (std::size_t i = 0; i < points.size(); ++i) star_begin[i + 1] += star_begin[i];
-    star.assign(star_begin.back(), 0);
-    {
-      std::vector<int> fill(star_begin.begin(), star_begin.end() - 1);
-      for (std::size_t i = 0; i < triangles.size(); ++i)
-        for (int k = 0; k < 3; ++k) star[fill[triangles[i][k]]++] = static_cast<int>(i);
-    }
-    // the triangle across each edge, for the projection's walk: -1 on a
-    // boundary edge and on an edge that more than two triangles share (the
-    // walk then looks at the vertex stars instead)
+    walk_edges_ = on;
+    if (!on || neighbour.size() == triangles.size()) return;
+    // the triangle across each edge: -1 on a boundary edge and on an edge
+    // that more than two triangles share (the walk then reads vertex stars)
     neighbour.assign(triangles.size(), {-1, -1, -1});
     parallel_for_index(neighbour.size(), 4096, [&](std::size_t i) {
       const auto& t = triangles[i];
@@ -102,6 +91,24 @@ public:
         neighbour[i][k] = found == 1 ? across : -1;
       }
     });
+  }
+
+  /// builds both trees and the vertex stars; call once after filling
+  /// points/triangles/segments.
+  void build()
+  {
+    star_begin.assign(points.size() + 1, 0);
+    for (const auto& t : triangles)
+      for (int k = 0; k < 3; ++k) ++star_begin[t[k] + 1];
+    for (std::size_t i = 0; i < points.size(); ++i) star_begin[i + 1] += star_begin[i];
+    star.assign(star_begin.back(), 0);
+    {
+      std::vector<int> fill(star_begin.begin(), star_begin.end() - 1);
+      for (std::size_t i = 0; i < triangles.size(); ++i)
+        for (int k = 0; k < 3; ++k) star[fill[triangles[i][k]]++] = static_cast<int>(i);
+    }
+    neighbour.clear();
+    walk_edges_ = false;
     // the tiny triangles and segments stay out of the trees (see is_large)
     std::vector<char> large(triangles.size());
     parallel_for_index(triangles.size(), 4096, [&](std::size_t i) { large[i] = is_large(i); });
@@ -212,112 +219,117 @@ public:
     return a + v * ab + w * ac;
   }
 
+  /// where a local search from a triangle ended; `converged` false when it
+  /// ran out of steps (then it is no minimum)
+  struct Local_closest
+  {
+    int t = -1;
+    double d = std::numeric_limits<double>::infinity(), u = 0, v = 0, w = 0;
+    Vec3 p{};
+    bool converged = false;
+  };
+
   /// closest point to `q` found locally from triangle `hint`, by the walk
-  /// (`walk_edges`) or the descent through vertex stars (vertices move a
-  /// fraction of an edge per iteration, so both are local);
-  /// falls back to the AABB tree when there is no hint or the local answer
-  /// is farther than `max_dist`.
+  /// (set_walk_edges) or the descent through vertex stars (vertices move a
+  /// fraction of an edge per iteration, so both are local); falls back to
+  /// the AABB tree when there is no hint, the search ran out of steps, or its
+  /// answer is farther than `max_dist`.
   Vec3 project_surface(const Vec3& q, double& size, int& hint, double max_dist) const
   {
     if (hint >= 0 && hint < int(triangles.size())) {
-      if (walk_edges) {
-        // A walk from the hint to a triangle none of whose neighbours is
-        // closer: across the edges of the current triangle, and through the
-        // stars of its corners when the closest point lies on its edge or
-        // corner (a corner joins triangles that share no edge with it). Vertices
-        // move a fraction of an edge per iteration, so the walk is a few
-        // steps: 4 evaluations where the closest point lies inside a
-        // triangle, against the ~25 of a descent through whole vertex stars.
-        // A point on an edge or a corner also reads the stars of its corners.
-        struct Best { int t; double d, u, v, w; Vec3 p; };
-        auto evaluate = [&](int t) {
-          const auto& tr = triangles[t];
-          Best b{t, 0, 0, 0, 0, {}};
-          b.p = closest_on_triangle(q, points[tr[0]], points[tr[1]], points[tr[2]], b.u, b.v, b.w);
-          b.d = squared_norm(b.p - q);
-          return b;
-        };
-        Best best = evaluate(hint);
-        bool converged = false;
-        for (int step = 0; step < 64 && !converged; ++step) {
-          const int from = best.t;
-          const auto& tr = triangles[from];
-          const auto& nb = neighbour[from];
-          auto consider = [&](int t) {
-            if (t < 0 || t == from) return;
-            const Best b = evaluate(t);
-            if (b.d < best.d) best = b;
-          };
-          for (int k = 0; k < 3; ++k) consider(nb[k]);
-          // the closest point on an edge or at a corner of its triangle: a
-          // triangle that shares only that corner (or a corner of that edge)
-          // can be closer, where the surface folds towards the point; the
-          // stars of those corners (the edge may have no single neighbour too)
-          if (best.t != from) continue;
-          const double bc[3] = {best.u, best.v, best.w};
-          if (bc[0] > 0. && bc[1] > 0. && bc[2] > 0.) { converged = true; break; }
-          for (int k = 0; k < 3; ++k) {
-            if (!(bc[k] > 0.)) continue;
-            const int pv = tr[k];
-            for (int j = star_begin[pv]; j < star_begin[pv + 1]; ++j) consider(star[j]);
-          }
-          converged = best.t == from;
-        }
-        // a walk that ran out of steps is no minimum: the tree answers
-        if (converged && best.d <= max_dist * max_dist) {
-          hint = best.t;
-          const auto& t = triangles[best.t];
-          size = best.u * sizing[t[0]] + best.v * sizing[t[1]] + best.w * sizing[t[2]];
-          return best.p;
-        }
-      } else {
-        int cur = hint, best = -1;
-        double bd = std::numeric_limits<double>::infinity(), bu = 0, bv = 0, bw = 0;
-        Vec3 bp{};
-        // Points whose star has been evaluated: a triangle with such a corner
-        // was evaluated already, and evaluating it again never changes the
-        // strict minimum (neighbouring stars overlap in most of their triangles).
-        int done[48];
-        int ndone = 0;
-        auto is_done = [&](int p) {
-          for (int i = 0; i < ndone; ++i)
-            if (done[i] == p) return true;
-          return false;
-        };
-        bool converged = false;
-        for (int step = 0; step < 16; ++step) {
-          int before = best;
-          for (int k = 0; k < 3; ++k) {
-            int pv = triangles[cur][k];
-            if (is_done(pv)) continue;
-            for (int j = star_begin[pv]; j < star_begin[pv + 1]; ++j) {
-              int t = star[j];
-              const auto& tr = triangles[t];
-              if (is_done(tr[0]) || is_done(tr[1]) || is_done(tr[2])) continue;
-              double u, v, w;
-              Vec3 p = closest_on_triangle(q, points[tr[0]], points[tr[1]], points[tr[2]], u, v, w);
-              double d = squared_norm(p - q);
-              if (d < bd) { bd = d; best = t; bp = p; bu = u; bv = v; bw = w; }
-            }
-            if (ndone < 48) done[ndone++] = pv;  // when full, stars are evaluated again
-          }
-          if (best == before) { converged = true; break; }
-          cur = best;
-        }
-        // A descent that ran out of steps is no minimum (a sample of a coarse
-        // face many input edges from its hint, on a fine input): its point
-        // overstated the face's deviation, and the error control refined a
-        // 1M-face scan at 0.002 x diagonal to 17,456 faces within 0.18 x the
-        // tolerance. The tree answers instead.
-        if (converged && best >= 0 && bd <= max_dist * max_dist) {
-          hint = best;
-          const auto& t = triangles[best];
-          size = bu * sizing[t[0]] + bv * sizing[t[1]] + bw * sizing[t[2]];
-          return bp;
-        }
+      // A search that ran out of steps is no minimum (a sample of a coarse
+      // face many input edges from its hint, on a fine input): its point
+      // overstated the face's deviation, and the error control refined a
+      // 1M-face scan at 0.002 x diagonal to 17,456 faces within 0.18 x the
+      // tolerance. The tree answers instead.
+      const Local_closest c = walk_edges_ ? walk(q, hint) : descend(q, hint);
+      if (c.converged && c.t >= 0 && c.d <= max_dist * max_dist) {
+        hint = c.t;
+        const auto& t = triangles[c.t];
+        size = c.u * sizing[t[0]] + c.v * sizing[t[1]] + c.w * sizing[t[2]];
+        return c.p;
       }
     }
     return project_surface_tree(q, size, hint);
+  }
+
+  /// A walk from `hint` to a triangle none of whose neighbours is closer:
+  /// across the edges of the current triangle, and through the stars of its
+  /// corners when the closest point lies on its edge or corner (a corner
+  /// joins triangles that share no edge with it). 4 evaluations where the
+  /// closest point lies inside a triangle, against ~25 for the descent.
+  Local_closest walk(const Vec3& q, int hint) const
+  {
+    auto evaluate = [&](int t) {
+      const auto& tr = triangles[t];
+      Local_closest b;
+      b.t = t;
+      b.p = closest_on_triangle(q, points[tr[0]], points[tr[1]], points[tr[2]], b.u, b.v, b.w);
+      b.d = squared_norm(b.p - q);
+      return b;
+    };
+    Local_closest best = evaluate(hint);
+    for (int step = 0; step < 64; ++step) {
+      const int from = best.t;
+      const auto& tr = triangles[from];
+      const auto& nb = neighbour[from];
+      auto consider = [&](int t) {
+        if (t < 0 || t == from) return;
+        const Local_closest b = evaluate(t);
+        if (b.d < best.d) best = b;
+      };
+      for (int k = 0; k < 3; ++k) consider(nb[k]);
+      if (best.t != from) continue;
+      // the closest point on an edge or at a corner: a triangle that shares
+      // only that corner (or a corner of that edge) can be closer, where the
+      // surface folds towards the point (the edge may have no single neighbour too)
+      const double bc[3] = {best.u, best.v, best.w};
+      if (!(bc[0] > 0. && bc[1] > 0. && bc[2] > 0.))
+        for (int k = 0; k < 3; ++k) {
+          if (!(bc[k] > 0.)) continue;
+          const int pv = tr[k];
+          for (int j = star_begin[pv]; j < star_begin[pv + 1]; ++j) consider(star[j]);
+        }
+      if (best.t == from) { best.converged = true; break; }
+    }
+    return best;
+  }
+
+  /// descent from `hint` through the vertex stars of the current best triangle
+  Local_closest descend(const Vec3& q, int hint) const
+  {
+    Local_closest best;
+    int cur = hint;
+    // Points whose star has been evaluated: a triangle with such a corner
+    // was evaluated already, and evaluating it again never changes the
+    // strict minimum (neighbouring stars overlap in most of their triangles).
+    int done[48];
+    int ndone = 0;
+    auto is_done = [&](int p) {
+      for (int i = 0; i < ndone; ++i)
+        if (done[i] == p) return true;
+      return false;
+    };
+    for (int step = 0; step < 16; ++step) {
+      const int before = best.t;
+      for (int k = 0; k < 3; ++k) {
+        const int pv = triangles[cur][k];
+        if (is_done(pv)) continue;
+        for (int j = star_begin[pv]; j < star_begin[pv + 1]; ++j) {
+          const int t = star[j];
+          const auto& tr = triangles[t];
+          if (is_done(tr[0]) || is_done(tr[1]) || is_done(tr[2])) continue;
+          double u, v, w;
+          const Vec3 p = closest_on_triangle(q, points[tr[0]], points[tr[1]], points[tr[2]], u, v, w);
+          const double d = squared_norm(p - q);
+          if (d < best.d) { best.d = d; best.t = t; best.p = p; best.u = u; best.v = v; best.w = w; }
+        }
+        if (ndone < 48) done[ndone++] = pv;  // when full, stars are evaluated again
+      }
+      if (best.t == before) { best.converged = true; break; }
+      cur = best.t;
+    }
+    return best;
   }
 
   /// closest point by the AABB tree; `hint` gets the triangle found.

@@ -260,7 +260,7 @@ public:
   void set_uniform(double L)
   {
     uniform_ = true;
-    ref.walk_edges = true;
+    ref.set_walk_edges(true);
     L_ = L;
     ref.sizing.assign(ref.points.size(), L);
     for (vertex_descriptor v : vertices(tm_)) put(size_, v, L);
@@ -269,7 +269,7 @@ public:
   void set_adaptive(double eps, double lmin, double lmax, double gamma)
   {
     uniform_ = false;
-    ref.walk_edges = false;
+    ref.set_walk_edges(false);
     ref.compute_adaptive_sizing(eps, lmin, lmax, gamma);
     for (vertex_descriptor v : vertices(tm_)) {
       int r = get(ref_, v);
