@@ -274,6 +274,7 @@ mrepair::bench::Measurement sweep_face_count(const std::string& path)
     t.stop();
     r.add("face_count_seconds", t.time());
     r.add("face_count_error", double(faces(mesh).size()) / double(target) - 1.);
+    if (!res.message.empty()) r.add("face_count_message", res.message);
     return mrepair::to_string(res.status);
   });
 }

@@ -491,6 +491,29 @@ TYPED_TEST(Remesh, face_count_on_a_far_sliver_keeps_to_its_budget)
   EXPECT_EQ(r.faces_after, face_count(m));
 }
 
+// Issue 52: a count that needs edges longer than the user's
+// remesh_max_edge_length (with a minimum given, so that the tolerance found
+// cannot lift the field over it) cannot be reached: the field sits at the
+// maximum everywhere. The call used to run its 8 scaling rounds for nothing
+// and say `ok`; it now stops and says why, with a valid mesh.
+TYPED_TEST(Remesh, face_count_below_what_the_maximum_length_allows_says_so)
+{
+  using Mesh = typename TypeParam::Mesh;
+  namespace MP = mrepair::parameters;
+  Mesh m = to_mesh<Mesh>(icosphere(4));  // unit sphere: ~320 faces at edge length 0.3
+  auto r = mrepair::remesh_to_face_count(m, 100, MP::remesh_max_edge_length(0.3, MP::remesh_min_edge_length(0.01)));
+  EXPECT_EQ(r.status, mrepair::Status::partial) << r.message;
+  EXPECT_NE(r.message.find("longer than remesh_max_edge_length"), std::string::npos) << r.message;
+  expect_valid(m);
+  EXPECT_EQ(r.faces_after, face_count(m));
+  EXPECT_GT(face_count(m), 200u);
+  // within reach, the same bound does not get in the way
+  Mesh w = to_mesh<Mesh>(icosphere(4));
+  auto ok = mrepair::remesh_to_face_count(w, 1000, MP::remesh_max_edge_length(0.3, MP::remesh_min_edge_length(0.01)));
+  EXPECT_EQ(ok.status, mrepair::Status::ok) << ok.message;
+  EXPECT_NEAR(double(face_count(w)), 1000., 20.);
+}
+
 // A user edge map marks features; protect_constraints keeps them unsplit.
 TYPED_TEST(Remesh, user_edge_map_and_protection)
 {

@@ -279,10 +279,18 @@ public:
 
   /// multiplies the sizing field (the reference's and the vertices') by `f`,
   /// clamped to [lmin, lmax]
-  void scale_sizing(double f, double lmin, double lmax)
+  /// scales the sizing by `f` within [lmin, lmax]; returns how many points of
+  /// the reference changed (0: the whole field is held at the bound)
+  std::size_t scale_sizing(double f, double lmin, double lmax)
   {
-    for (double& L : ref.sizing) L = std::clamp(L * f, lmin, lmax);
+    std::size_t changed = 0;
+    for (double& L : ref.sizing) {
+      const double scaled = std::clamp(L * f, lmin, lmax);
+      changed += scaled != L;
+      L = scaled;
+    }
     for (vertex_descriptor v : vertices(tm_)) put(size_, v, std::clamp(get(size_, v) * f, lmin, lmax));
+    return changed;
   }
 
   /// the min-angle optimisation of the last iteration, for runs made with
