@@ -62,18 +62,23 @@ Soup box(double x0, double x1, double y0, double y1, double z0, double z1)
   return s;
 }
 
+// `s` without its polygons in the plane z = `z`
+Soup without_faces_at_height(Soup s, double z)
+{
+  s.polygons.erase(std::remove_if(s.polygons.begin(), s.polygons.end(),
+                                  [&](const Polygon& p) {
+                                    return std::all_of(p.begin(), p.end(),
+                                                       [&](std::size_t i) { return s.points[i].z() == z; });
+                                  }),
+                   s.polygons.end());
+  return s;
+}
+
 // `box` without its bottom face (z = z0): an open part whose border is the
 // bottom rectangle.
 Soup box_without_bottom(double x0, double x1, double y0, double y1, double z0, double z1)
 {
-  Soup s = box(x0, x1, y0, y1, z0, z1);
-  s.polygons.erase(std::remove_if(s.polygons.begin(), s.polygons.end(),
-                                  [&](const Polygon& p) {
-                                    return std::all_of(p.begin(), p.end(),
-                                                       [&](std::size_t i) { return s.points[i].z() == z0; });
-                                  }),
-                   s.polygons.end());
-  return s;
+  return without_faces_at_height(box(x0, x1, y0, y1, z0, z1), z0);
 }
 
 // An open dome of `radius` on (cx, cy, cz), outward (up): an 8-vertex rim
@@ -568,16 +573,25 @@ TYPED_TEST(Solids, small_hole_beside_a_crossing_is_closed)
 TYPED_TEST(Solids, open_box_crossed_beside_its_hole_becomes_one_solid)
 {
   using Mesh = typename TypeParam::Mesh;
-  Soup cup = box(0, 1, 0, 1, 0, 1);
-  cup.polygons.erase(std::remove_if(cup.polygons.begin(), cup.polygons.end(),
-                                    [&](const Polygon& p) {
-                                      return std::all_of(p.begin(), p.end(), [&](std::size_t i) {
-                                        return cup.points[i].z() == 1.;
-                                      });
-                                    }),
-                     cup.polygons.end());
+  const Soup cup = without_faces_at_height(box(0, 1, 0, 1, 0, 1), 1.);
   ASSERT_EQ(cup.polygons.size(), 10u);
   expect_solidified<Mesh>(merged(cup, box(0.5, 1.5, 0.25, 0.75, 0.5, 1.5)), 2, 1, 1.375);
+}
+
+// 7b2. A pot with its lid in it and a spout through its wall (the Utah
+// teapot): the pot is open at the top, and the lid, an open dome whose rim
+// lies inside the pot below the opening, crosses neither the pot nor the
+// spout. The pot's cap (the opening, 20% of its area: a hole by the filler's
+// rule) crosses the lid: the lid is capped too (its rim inside the capped
+// pot), and pot, lid and spout become one closed solid. Before, the lid
+// stayed apart, crossing the pot's cap.
+TYPED_TEST(Solids, lid_in_an_open_pot_becomes_part_of_the_solid)
+{
+  const Soup pot = without_faces_at_height(box(0, 2, 0, 2, 0, 2), 2.);
+  ASSERT_EQ(pot.polygons.size(), 10u);
+  const Soup s = merged(merged(pot, dome(1, 1, 1.9, 0.9, 0.)), box(1.5, 3, 0.8, 1.2, 0.8, 1.2));
+  // the capped pot (8), the spout outside it (0.16), the lid above the opening
+  expect_one_solid_of_volume_within<typename TypeParam::Mesh>(s, 3, 8.17, 8.16 + 2. / 3. * pi * 0.729);
 }
 
 // 7c. A button on a body: an open dome whose rim sits on the body's top

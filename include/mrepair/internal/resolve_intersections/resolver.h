@@ -257,6 +257,52 @@ private:
     return large ? large_caps : small_caps;
   }
 
+  // The open shells not considered yet (no crossing of their own) that a
+  // cap of `caps` crosses: (capped shell, crossed shell) pairs. A pair of
+  // triangles with a corner at the same point only touches there (a lid's
+  // rim on its pot's rim) and does not count; exact predicates (Epick).
+  std::vector<std::pair<std::size_t, std::size_t>> shells_crossing_caps(
+      const std::vector<Shell<PM>>& shells,
+      const std::map<std::size_t, std::vector<std::array<vertex_descriptor, 3>>>& caps) const
+  {
+    using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+    std::vector<std::pair<std::size_t, std::size_t>> found;
+    auto to_point = [&](vertex_descriptor v) {
+      const Vec3 p = point(vpm_, v);
+      return Epick::Point_3(p[0], p[1], p[2]);
+    };
+    for (const auto& cap : caps) {
+      std::vector<Epick::Triangle_3> triangles;
+      CGAL::Bbox_3 box;
+      for (const auto& t : cap.second) {
+        triangles.emplace_back(to_point(t[0]), to_point(t[1]), to_point(t[2]));
+        box += triangles.back().bbox();
+      }
+      for (std::size_t d = 0; d < shells.size(); ++d) {
+        if (d == cap.first || shells[d].closed || caps.count(d) || !CGAL::do_overlap(box, shells[d].box)) continue;
+        bool crosses = false;
+        for (std::size_t i = 0; i < shells[d].faces.size() && !crosses; ++i) {
+          const halfedge_descriptor h = halfedge(shells[d].faces[i], pm_);
+          const Epick::Triangle_3 g(to_point(source(h, pm_)), to_point(target(h, pm_)),
+                                    to_point(target(next(h, pm_), pm_)));
+          if (g.is_degenerate() || !CGAL::do_overlap(g.bbox(), box)) continue;
+          for (const Epick::Triangle_3& t : triangles) {
+            if (t.is_degenerate() || !CGAL::do_overlap(g.bbox(), t.bbox())) continue;
+            bool shares_a_corner = false;
+            for (int a = 0; a < 3; ++a)
+              for (int b = 0; b < 3; ++b) shares_a_corner = shares_a_corner || g[a] == t[b];
+            if (!shares_a_corner && CGAL::do_intersect(g, t)) {
+              crosses = true;
+              break;
+            }
+          }
+        }
+        if (crosses) found.emplace_back(cap.first, d);
+      }
+    }
+    return found;
+  }
+
   // The open shells of `sheet_caps` whose every border point lies inside
   // the closed shells that take part in a crossing (non-zero winding number
   // of those shells, exact ray casts: compare_to_reference's test) get their
@@ -345,18 +391,17 @@ private:
       for (const auto& vl : loop_of) {
         const Vec3 p = point(vpm_, vl.first);
         const Epick::Point_3 q(p[0], p[1], p[2]);
-        int winding = 0;
-        if (!winding_number(tree, solids, wvpm, q, reach, winding)) {
-          inside = false;
-          break;
-        }
-        if (winding != 0) continue;
+        // near the solids' surface counts whichever side it is on; tested
+        // first, because a point on that surface (a lid whose rim sits on
+        // the rim of its pot) has no ray without a degenerate hit
         const CGAL::Bbox_3& box = loop_box[loops.find(vl.second)];
         const double loop_size = std::sqrt(CGAL::square(box.xmax() - box.xmin()) +
                                            CGAL::square(box.ymax() - box.ymin()) +
                                            CGAL::square(box.zmax() - box.zmin()));
         const double allowed = settings_.rim_outside_share * loop_size;
-        if (!(tree.squared_distance(q) <= allowed * allowed)) {
+        if (tree.squared_distance(q) <= allowed * allowed) continue;
+        int winding = 0;
+        if (!winding_number(tree, solids, wvpm, q, reach, winding) || winding == 0) {
           inside = false;
           break;
         }
@@ -422,6 +467,15 @@ private:
       bounds_a_solid(get(component, p.first));
       bounds_a_solid(get(component, p.second));
     }
+    // A cap can cross a shell that nothing crossed before: the flat cap of a
+    // pot's opening crosses the lid that sits in it (the Utah teapot: the
+    // lid only touches the pot's rim). Such an open shell is a candidate too,
+    // paired with the capped shell.
+    const std::vector<std::pair<std::size_t, std::size_t>> cap_crossings = shells_crossing_caps(shells, caps);
+    for (const auto& cd : cap_crossings) {
+      crosses_another[cd.second] = 1;
+      bounds_a_solid(cd.second);
+    }
     // An open part stuck into a body (a dome, a button, a leg of a model
     // whose parts were modelled as open surfaces): its border lies inside
     // the body, so its cap does too and the union does not show it.
@@ -431,6 +485,8 @@ private:
       const std::size_t a = get(component, p.first), b = get(component, p.second);
       if (bounds_a_solid(a) && bounds_a_solid(b)) chosen[a] = chosen[b] = 1, any = true;
     }
+    for (const auto& cd : cap_crossings)
+      if (bounds_a_solid(cd.first) && bounds_a_solid(cd.second)) chosen[cd.first] = chosen[cd.second] = 1, any = true;
     if (!any) return false;
     // the chosen shells as a soup, and their crossing pairs by soup index
     Triangle_soup soup;
