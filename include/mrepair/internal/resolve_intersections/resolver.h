@@ -257,12 +257,13 @@ private:
     return large ? large_caps : small_caps;
   }
 
-  // The open shells not considered yet (no crossing of their own) that a
-  // cap of `caps` crosses: (capped shell, crossed shell) pairs. A pair of
-  // triangles with a corner at the same point only touches there (a lid's
-  // rim on its pot's rim) and does not count; exact predicates (Epick).
+  // The open shells not considered yet (no crossing of their own:
+  // `solid_shell` -1) that a cap of `caps` crosses: (capped shell, crossed
+  // shell) pairs. A pair of triangles with a corner at the same point only
+  // touches there (a lid's rim on its pot's rim) and does not count; exact
+  // predicates (Epick).
   std::vector<std::pair<std::size_t, std::size_t>> shells_crossing_caps(
-      const std::vector<Shell<PM>>& shells,
+      const std::vector<Shell<PM>>& shells, const std::vector<signed char>& solid_shell,
       const std::map<std::size_t, std::vector<std::array<vertex_descriptor, 3>>>& caps) const
   {
     using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -279,7 +280,7 @@ private:
         box += triangles.back().bbox();
       }
       for (std::size_t d = 0; d < shells.size(); ++d) {
-        if (d == cap.first || shells[d].closed || caps.count(d) || !CGAL::do_overlap(box, shells[d].box)) continue;
+        if (solid_shell[d] >= 0 || shells[d].closed || !CGAL::do_overlap(box, shells[d].box)) continue;
         bool crosses = false;
         for (std::size_t i = 0; i < shells[d].faces.size() && !crosses; ++i) {
           const halfedge_descriptor h = halfedge(shells[d].faces[i], pm_);
@@ -471,7 +472,7 @@ private:
     // pot's opening crosses the lid that sits in it (the Utah teapot: the
     // lid only touches the pot's rim). Such an open shell is a candidate too,
     // paired with the capped shell.
-    const std::vector<std::pair<std::size_t, std::size_t>> cap_crossings = shells_crossing_caps(shells, caps);
+    const std::vector<std::pair<std::size_t, std::size_t>> cap_crossings = shells_crossing_caps(shells, solid_shell, caps);
     for (const auto& cd : cap_crossings) {
       crosses_another[cd.second] = 1;
       bounds_a_solid(cd.second);
