@@ -212,9 +212,8 @@ Remeshing_result adaptive_remesh(const FaceRange& face_range, TriangleMesh& tm, 
 /// collapses are capped at 100 per input and per target face: a surface far
 /// thinner than the target length in one direction returns `partial` (valid
 /// mesh, count not reached). So does a count that needs edges longer than
-/// `remesh_max_edge_length` (or shorter than `remesh_min_edge_length`): once
-/// the whole field sits at that bound, `res.message` says so and gives the
-/// count reached. `res.tolerance` is the tolerance found.
+/// `remesh_max_edge_length`: once the whole field sits at it, `res.message`
+/// says so and gives the count reached. `res.tolerance` is the tolerance found.
 /// \param np as `adaptive_remesh`, except that `remesh_max_edge_length` has no
 ///        default clamp (twice the bounding-box diagonal) and
 ///        `remesh_min_edge_length` defaults to the tolerance found

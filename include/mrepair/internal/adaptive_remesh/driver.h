@@ -175,8 +175,9 @@ Status remesh_to_count(Remesher& R, const Remesh_options& o, double value, std::
     // user's maximum bounds the field.
     const double high = lmin > lmax ? std::numeric_limits<double>::infinity() : lmax;
     if (R.scale_sizing(std::sqrt(F / N), low, high) == 0) {
-      // the whole field sits at the maximum: more rounds cannot move the count
-      if (std::abs(F - N) > 0.02 * N) {
+      // the whole field sits at the maximum (F > N: the field was scaled
+      // up), or at the floor: more rounds cannot move the count
+      if (F > N && std::abs(F - N) > 0.02 * N) {
         st = Status::partial;
         std::ostringstream m;
         m << "the face count needs edges longer than remesh_max_edge_length (" << high * o.density

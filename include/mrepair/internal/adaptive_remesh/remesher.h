@@ -278,9 +278,8 @@ public:
   }
 
   /// multiplies the sizing field (the reference's and the vertices') by `f`,
-  /// clamped to [lmin, lmax]
-  /// scales the sizing by `f` within [lmin, lmax]; returns how many points of
-  /// the reference changed (0: the whole field is held at the bound)
+  /// clamped to [lmin, lmax]; returns how many points of the reference
+  /// changed (0: the whole field is held at a bound)
   std::size_t scale_sizing(double f, double lmin, double lmax)
   {
     std::size_t changed = 0;

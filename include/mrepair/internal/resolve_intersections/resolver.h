@@ -11,6 +11,7 @@
 #include <mrepair/internal/resolve_intersections/arrangement.h>
 #include <mrepair/internal/resolve_intersections/crossings.h>
 #include <mrepair/internal/resolve_intersections/shells.h>
+#include <mrepair/internal/triangle_intersection.h>
 #include <mrepair/internal/utility.h>
 #include <mrepair/status.h>
 
@@ -259,44 +260,46 @@ private:
 
   // The open shells not considered yet (no crossing of their own:
   // `solid_shell` -1) that a cap of `caps` crosses: (capped shell, crossed
-  // shell) pairs. A pair of triangles with a corner at the same point only
-  // touches there (a lid's rim on its pot's rim) and does not count; exact
-  // predicates (Epick).
+  // shell) pairs. Triangles that meet only in what they share (a corner at
+  // the same point: a lid's rim on its pot's rim) do not count
+  // (triangles_intersect, the inspection's test, with points as keys).
   std::vector<std::pair<std::size_t, std::size_t>> shells_crossing_caps(
       const std::vector<Shell<PM>>& shells, const std::vector<signed char>& solid_shell,
       const std::map<std::size_t, std::vector<std::array<vertex_descriptor, 3>>>& caps) const
   {
-    using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+    using Corners = std::array<Epick_point, 3>;
     std::vector<std::pair<std::size_t, std::size_t>> found;
-    auto to_point = [&](vertex_descriptor v) {
-      const Vec3 p = point(vpm_, v);
-      return Epick::Point_3(p[0], p[1], p[2]);
+    auto corners = [&](vertex_descriptor a, vertex_descriptor b, vertex_descriptor c) {
+      Corners t;
+      const vertex_descriptor v[3] = {a, b, c};
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 p = point(vpm_, v[k]);
+        t[k] = Epick_point(p[0], p[1], p[2]);
+      }
+      return t;
     };
+    auto box_of = [](const Corners& t) { return t[0].bbox() + t[1].bbox() + t[2].bbox(); };
+    auto flat = [](const Corners& t) { return CGAL::collinear(t[0], t[1], t[2]); };  // no triangle to test
     for (const auto& cap : caps) {
-      std::vector<Epick::Triangle_3> triangles;
+      std::vector<Corners> triangles;
       CGAL::Bbox_3 box;
       for (const auto& t : cap.second) {
-        triangles.emplace_back(to_point(t[0]), to_point(t[1]), to_point(t[2]));
-        box += triangles.back().bbox();
+        triangles.push_back(corners(t[0], t[1], t[2]));
+        box += box_of(triangles.back());
       }
       for (std::size_t d = 0; d < shells.size(); ++d) {
         if (solid_shell[d] >= 0 || shells[d].closed || !CGAL::do_overlap(box, shells[d].box)) continue;
         bool crosses = false;
         for (std::size_t i = 0; i < shells[d].faces.size() && !crosses; ++i) {
           const halfedge_descriptor h = halfedge(shells[d].faces[i], pm_);
-          const Epick::Triangle_3 g(to_point(source(h, pm_)), to_point(target(h, pm_)),
-                                    to_point(target(next(h, pm_), pm_)));
-          if (g.is_degenerate() || !CGAL::do_overlap(g.bbox(), box)) continue;
-          for (const Epick::Triangle_3& t : triangles) {
-            if (t.is_degenerate() || !CGAL::do_overlap(g.bbox(), t.bbox())) continue;
-            bool shares_a_corner = false;
-            for (int a = 0; a < 3; ++a)
-              for (int b = 0; b < 3; ++b) shares_a_corner = shares_a_corner || g[a] == t[b];
-            if (!shares_a_corner && CGAL::do_intersect(g, t)) {
+          const Corners g = corners(source(h, pm_), target(h, pm_), target(next(h, pm_), pm_));
+          const CGAL::Bbox_3 gb = box_of(g);
+          if (!CGAL::do_overlap(gb, box) || flat(g)) continue;
+          for (const Corners& t : triangles)
+            if (!flat(t) && CGAL::do_overlap(gb, box_of(t)) && triangles_intersect(g.data(), g.data(), t.data(), t.data())) {
               crosses = true;
               break;
             }
-          }
         }
         if (crosses) found.emplace_back(cap.first, d);
       }
