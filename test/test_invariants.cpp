@@ -1051,6 +1051,63 @@ TEST(RepairJob, OutputIsFinalOnlyAfterASuccessfulCleaning)
   EXPECT_EQ(seen[seen.size() - 2], std::make_pair(std::string("clean"), true));
 }
 
+// Issue 49: on one shell the output inspection runs before the solid repair,
+// and its count of crossing pairs decides whether the repair has anything
+// to do. The reported output inspection is always that of the output: the
+// same as inspecting the repaired mesh afresh, whether the solid repair was
+// skipped (a sphere with a hole and a spike), ran and changed nothing, or
+// changed the mesh (a box whose top is pushed through its bottom).
+TEST(RepairJob, OneShellWithoutCrossingNeedsNoSolidRepairAndTheReportStaysTheOutputs)
+{
+  using Mesh = CGAL::Surface_mesh<Point>;
+  auto without_seconds = [](const mrepair::Inspection_report& i) {
+    mrepair::Report report;
+    i.to_report(report.section("after"));
+    std::string json, line;
+    std::istringstream lines(report.to_json());
+    while (std::getline(lines, line))
+      if (line.find("\"seconds\"") == std::string::npos) json += line + "\n";
+    return json;
+  };
+  Soup sphere = icosphere(3, 1.0);
+  sphere.polygons.erase(sphere.polygons.begin() + 300, sphere.polygons.begin() + 303);  // a hole
+  Soup box = cube(1.0);
+  // the top's back edge below the bottom: the top crosses the bottom
+  for (Point& p : box.points)
+    if (p.z() == 1 && p.y() == 1) p = Point(p.x(), 0.5, -0.5);
+  for (int which = 0; which < 2; ++which) {
+    SCOPED_TRACE(which == 0 ? "sphere with a hole" : "box pushed through itself");
+    const Soup& s = which == 0 ? sphere : box;
+    std::vector<Point> points = s.points;
+    std::vector<Polygon> polygons = s.polygons;
+    Mesh m;
+    const mrepair::Repair_result r = mrepair::repair_polygon_soup(points, polygons, m);
+    ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
+    ASSERT_TRUE(r.intersections_resolved) << r.message;
+    const mrepair::Intersection_repair_result& ir = r.intersections;
+    const bool skipped = ir.message.find("nothing to resolve") != std::string::npos;
+    if (which == 0) {
+      EXPECT_TRUE(skipped) << ir.message;
+      EXPECT_EQ(ir.status, mrepair::Status::ok);
+      EXPECT_TRUE(ir.intersection_free);
+      EXPECT_TRUE(r.after.closed);
+    } else {
+      EXPECT_FALSE(skipped);
+      EXPECT_GT(ir.crossing_pairs_before, 0u);
+    }
+    ASSERT_TRUE(r.after.self_intersections_counted);
+    namespace MP = mrepair::parameters;
+    const mrepair::Inspection_report fresh =
+        mrepair::inspect(m, MP::max_hole_vertices(
+                                r.after.max_hole_vertices,
+                                MP::min_component_faces(r.after.min_component_faces,
+                                                        MP::spike_angle(r.after.spike_angle))));
+    EXPECT_EQ(without_seconds(r.after), without_seconds(fresh));
+    EXPECT_EQ(r.after.self_intersecting_pairs - r.after.self_intersecting_pairs_touching,
+              ir.crossing_pairs_after);
+  }
+}
+
 TEST(TimeBudgetVisitor, ForwardsHooksAndHonoursTheInnerStop)
 {
   struct Recorder : mrepair::Default_visitor

@@ -138,7 +138,9 @@ struct Repair_stages
 ///     so_far)`): called after the stages "before" (input inspected),
 ///     "soup_to_manifold" (the mesh built, the soup's memory freed),
 ///     "close_gaps" (when it ran), "clean" (profile chosen),
-///     "resolve_intersections" (when it ran) and "after" (output inspected):
+///     "resolve_intersections" (when it ran, or when the output inspection,
+///     made first on a mesh of one shell, found nothing for it to do) and
+///     "after" (output inspected):
 ///     lets a caller print while the job runs, write `out` once
 ///     `output_final`, or hand freed memory back to the system
 ///   - `visitor` (`Default_visitor`): phases "soup_to_manifold", "close_gaps"

@@ -12,8 +12,11 @@
 
 #include <mrepair/definitions.h>
 #include <mrepair/input_classification.h>
+#include <mrepair/inspection_report.h>
+#include <mrepair/intersection_repair_result.h>
 #include <mrepair/internal/clean_scan_mesh/hole_filler.h>
 #include <mrepair/internal/clean_scan_mesh/pipeline.h>
+#include <mrepair/internal/coordinate_range.h>
 #include <mrepair/internal/input_profile/classifier.h>
 #include <mrepair/internal/io/convert.h>
 #include <mrepair/internal/utility.h>
@@ -27,12 +30,16 @@
 #include <CGAL/Polygon_mesh_processing/polygon_mesh_to_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
+
+#include <boost/graph/graph_traits.hpp>
 
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/task_group.h>
 #endif
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -63,6 +70,26 @@ inline Repair_result failed_repair(Repair_result result, const std::string& stag
   result.failed_stage = stage;
   result.message = stage + ": " + to_string(s) + (reason.empty() ? "" : ": " + reason);
   return result;
+}
+
+/// the number of components of `pm` whose faces are joined across edges (a
+/// union-find over the edges, milliseconds at 1M faces).
+template <typename PolygonMesh>
+std::size_t face_connected_components(const PolygonMesh& pm)
+{
+  using GT = boost::graph_traits<PolygonMesh>;
+  auto fim = CGAL::get_initialized_face_index_map(pm);
+  std::size_t slots = 0;
+  for (auto f : faces(pm)) slots = (std::max)(slots, static_cast<std::size_t>(get(fim, f)) + 1);
+  Union_find<std::size_t> uf(slots);
+  for (auto e : edges(pm)) {
+    const auto h = halfedge(e, pm);
+    const auto f0 = face(h, pm), f1 = face(opposite(h, pm), pm);
+    if (f0 != GT::null_face() && f1 != GT::null_face()) uf.unite(get(fim, f0), get(fim, f1));
+  }
+  std::size_t n = 0;
+  for (auto f : faces(pm)) n += uf.find(get(fim, f)) == get(fim, f);
+  return n;
 }
 
 /// the job on a cleared `out` (see repair_polygon_soup()).
@@ -276,7 +303,44 @@ Repair_result run_repair_job(std::vector<Point>& points, std::vector<Polygon>& p
   // 4. Solid repair: the crossings the cleaning left, then the holes beside
   // them (the hole filler refuses a patch into a surface that crosses itself).
   bool crossings_known = false;
-  if (resolve && c.status != Status::empty_input) {
+  // The output inspection counts the crossing pairs with the test the solid
+  // repair's scan uses (same faces, same pairs): on one shell the inspection
+  // runs first, and when it finds no crossing the solid repair has nothing
+  // to do and is not run. Its scan and the inspection built the same arrays
+  // and certified the same stars: 0.45 of 1.2 s on the 1M-face scan.
+  auto inspect_output = [&](bool count_pairs) {
+    stage_clock.restart();
+    Inspection_report i = Stages::inspect(
+        out, MP::max_hole_vertices(
+                 hole_n, MP::min_component_faces(
+                             comp_n, MP::spike_angle(spike, MP::count_self_intersections(count_pairs)))));
+    return std::make_pair(i, stage_clock.seconds());
+  };
+  std::pair<Inspection_report, double> inspected;
+  bool inspected_current = false;  // `inspected` is of `out` as it is now
+  if (resolve && c.status != Status::empty_input &&
+      face_connected_components(out) == 1) {
+    inspected = inspect_output(true);
+    inspected_current = true;
+    const Inspection_report& i = inspected.first;
+    const bool nothing_to_resolve =
+        i.status == Status::ok && i.self_intersections_counted &&
+        i.self_intersecting_pairs == i.self_intersecting_pairs_touching && i.connected_components == 1 &&
+        !coordinates_too_large(out, get_const_property_map(CGAL::vertex_point, out));
+    if (nothing_to_resolve) {
+      Intersection_repair_result& ir = result.intersections;
+      ir = Intersection_repair_result();
+      ir.touching_pairs_before = ir.touching_pairs_after = i.self_intersecting_pairs_touching;
+      ir.intersection_free = true;
+      ir.message = "one shell without crossing pairs (the output inspection's count): nothing to resolve";
+      result.intersections_resolved = true;
+      ir.to_report(report.section("resolve_intersections"));
+      result.output_final = true;
+      crossings_known = true;
+      stage_done("resolve_intersections");
+    }
+  }
+  if (resolve && c.status != Status::empty_input && !crossings_known) {
     stage_clock.restart();
     const bool cad = c.profile.profile == Input_profile::cad;
     Intersection_repair_result& ir = result.intersections;
@@ -315,6 +379,7 @@ Repair_result run_repair_job(std::vector<Point>& points, std::vector<Polygon>& p
       h.to_report(rr.section("holes_filled_after"));
       crossings_known = crossings_known && h.faces_added == 0 && h.enlargement_faces_removed == 0;
     }
+    inspected_current = inspected_current && !changed;
     rr.add("seconds", stage_clock.seconds());
     result.output_final = true;
     stage_done("resolve_intersections");
@@ -336,13 +401,9 @@ Repair_result run_repair_job(std::vector<Point>& points, std::vector<Polygon>& p
     fa.add("reconciles", result.faces_reconcile());
   }
 
-  stage_clock.restart();
   // the solid repair's last count stands when nothing changed the mesh since
-  const bool count_again = count_output_pairs && !crossings_known;
-  result.after = Stages::inspect(
-      out, MP::max_hole_vertices(
-               hole_n, MP::min_component_faces(
-                           comp_n, MP::spike_angle(spike, MP::count_self_intersections(count_again)))));
+  if (!inspected_current) inspected = inspect_output(count_output_pairs && !crossings_known);
+  result.after = inspected.first;
   // (then even without count_self_intersections: the step counted anyway)
   if (crossings_known) {
     result.after.self_intersections_counted = true;
@@ -351,7 +412,7 @@ Repair_result run_repair_job(std::vector<Point>& points, std::vector<Polygon>& p
     result.after.self_intersecting_pairs_touching = result.intersections.touching_pairs_after;
   }
   result.after.to_report(report.section("after"));
-  report.section("after").add("seconds", stage_clock.seconds());
+  report.section("after").add("seconds", inspected.second);
   stage_done("after");
   result.status = c.status;
   return result;
