@@ -8,6 +8,7 @@
 #include "cli.h"
 #include "cli_io.h"
 
+#include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
 
 #include <algorithm>
@@ -1460,6 +1461,128 @@ TYPED_TEST(Io_mesh, builder_agrees_with_cgal_on_random_soups)
   }
   EXPECT_GT(built, 50u);
   EXPECT_GT(refused, 50u);
+}
+
+// The file reader's builder on an empty Surface_mesh sizes its arrays once
+// and wires the halfedges in parallel; on other meshes it adds element by
+// element. Both must give the same elements in the same order, and the
+// 32-bit topology the reader uses below 4G corners the 64-bit one's arrays.
+// The soup is large enough for the parallel passes (over 2^20 corners and
+// 2^16 points), with holes and its faces in a shuffled order (as in files
+// whose faces do not follow their vertices).
+TEST(Io_builder, parallel_surface_mesh_build_and_narrow_topology_match_the_generic_ones)
+{
+  namespace IO = mrepair::internal::io;
+  const std::size_t nx = 450, ny = 400;
+  Soup s = grid(nx, ny);
+  // holes of one cell, apart from each other (border edges and vertices, no
+  // vertex with two fans), then the faces in a shuffled order
+  std::vector<Polygon> kept;
+  for (std::size_t f = 0; f < s.polygons.size(); ++f) {
+    const std::size_t cell = f / 2, i = cell % nx, j = cell / nx;
+    if (i % 10 != 5 || j % 10 != 5) kept.push_back(s.polygons[f]);
+  }
+  std::mt19937 rng(11);
+  std::shuffle(kept.begin(), kept.end(), rng);
+  std::vector<std::int64_t> indices;
+  std::vector<std::size_t> starts = {0};
+  for (const Polygon& p : kept) {
+    indices.insert(indices.end(), p.begin(), p.end());
+    starts.push_back(indices.size());
+  }
+  const std::size_t nf = starts.size() - 1;
+  ASSERT_GT(indices.size(), std::size_t(1) << 20);
+  std::string why;
+  IO::Basic_soup_topology<std::uint32_t> narrow;
+  IO::Soup_topology wide;
+  ASSERT_TRUE(narrow.compute(s.points.size(), indices.data(), starts.data(), nf, why)) << why;
+  ASSERT_TRUE(wide.compute(s.points.size(), indices.data(), starts.data(), nf, why)) << why;
+  ASSERT_EQ(narrow.out_start.size(), wide.out_start.size());
+  for (std::size_t v = 0; v < wide.out_start.size(); ++v) ASSERT_EQ(narrow.out_start[v], wide.out_start[v]);
+  std::size_t borders = 0;
+  for (std::size_t c = 0; c < indices.size(); ++c) {
+    ASSERT_EQ(narrow.next[c], wide.next[c]);
+    ASSERT_EQ(narrow.prev[c], wide.prev[c]);
+    ASSERT_EQ(narrow.opposite_of(c), wide.opposite_of(c));
+    ASSERT_EQ(narrow.out[c], wide.out[c]);
+    borders += wide.opposite_of(c) == IO::Soup_topology::none;
+  }
+  EXPECT_GT(borders, 1000u);
+
+  Surface_mesh sm;
+  Polyhedron ph;
+  auto sm_points = get(CGAL::vertex_point, sm);
+  auto ph_points = get(CGAL::vertex_point, ph);
+  IO::build_mesh(narrow, s.points.size(), indices.data(), starts.data(), nf, sm,
+                 [&](auto v, std::size_t i) { put(sm_points, v, s.points[i]); });
+  IO::build_mesh(wide, s.points.size(), indices.data(), starts.data(), nf, ph,
+                 [&](auto v, std::size_t i) { put(ph_points, v, s.points[i]); });
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(sm));
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(ph));
+  ASSERT_EQ(vertices(sm).size(), vertices(ph).size());
+  ASSERT_EQ(edges(sm).size(), edges(ph).size());
+  ASSERT_EQ(faces(sm).size(), faces(ph).size());
+  // vertices: the same points, each pointing to the same halfedge (by its ends)
+  auto pv = vertices(ph).begin();
+  for (auto v : vertices(sm)) {
+    ASSERT_EQ(get(sm_points, v), get(ph_points, *pv));
+    const auto hs = halfedge(v, sm);
+    const auto hp = halfedge(*pv, ph);
+    ASSERT_EQ(get(sm_points, source(hs, sm)), get(ph_points, source(hp, ph)));
+    ASSERT_EQ(CGAL::is_border(hs, sm), CGAL::is_border(hp, ph));
+    ++pv;
+  }
+  // faces: the same cycles from the same first halfedge
+  auto pf = faces(ph).begin();
+  for (auto f : faces(sm)) {
+    std::vector<Point> a, b;
+    for (auto v : CGAL::vertices_around_face(halfedge(f, sm), sm)) a.push_back(get(sm_points, v));
+    for (auto v : CGAL::vertices_around_face(halfedge(*pf, ph), ph)) b.push_back(get(ph_points, v));
+    ASSERT_EQ(a, b);
+    ++pf;
+  }
+  // edges in the same order, each halfedge with the same ends and face side
+  auto pe = edges(ph).begin();
+  for (auto e : edges(sm)) {
+    const auto hs = halfedge(e, sm);
+    const auto hp = halfedge(*pe, ph);
+    ASSERT_EQ(get(sm_points, source(hs, sm)), get(ph_points, source(hp, ph)));
+    ASSERT_EQ(get(sm_points, target(hs, sm)), get(ph_points, target(hp, ph)));
+    ASSERT_EQ(CGAL::is_border(hs, sm), CGAL::is_border(hp, ph));
+    ASSERT_EQ(get(sm_points, target(next(hs, sm), sm)), get(ph_points, target(next(hp, ph), ph)));
+    ++pe;
+  }
+}
+
+// A Surface_mesh with removed elements (collapses, as the remesher leaves
+// them with collect_garbage(false)) is written in place, the removed slots
+// skipped: the same bytes, in every format, as through the copy the writer
+// makes for a user-given index map, and read back with the mesh's counts.
+TEST(Io_write, mesh_with_removed_elements_is_written_as_its_copy)
+{
+  Surface_mesh m = to_mesh<Surface_mesh>(icosphere(3));
+  for (int i = 0; i < 40; ++i) {
+    auto e = *std::next(edges(m).begin(), 37 * i + 3);
+    if (CGAL::Euler::does_satisfy_link_condition(e, m)) CGAL::Euler::collapse_edge(e, m);
+  }
+  ASSERT_TRUE(m.has_garbage());
+  ASSERT_TRUE(mrepair_test::valid_polygon_mesh(m));
+  for (const char* ext : {"off", "obj", "ply", "stl"})
+    for (bool binary : {false, true}) {
+      const std::string in_place = temp_file(std::string("gaps_view.") + ext);
+      const std::string copied = temp_file(std::string("gaps_copy.") + ext);
+      ASSERT_EQ(mrepair::write_polygon_mesh(in_place, m, binary).status, Status::ok) << ext;
+      ASSERT_EQ(mrepair::write_polygon_mesh(copied, m, binary,
+                                            CGAL::parameters::vertex_index_map(get(CGAL::vertex_index, m)))
+                    .status,
+                Status::ok)
+          << ext;
+      EXPECT_EQ(read_bytes(in_place), read_bytes(copied)) << ext << (binary ? " binary" : " ascii");
+      Surface_mesh back;
+      ASSERT_EQ(mrepair::read_polygon_mesh(in_place, back).status, Status::ok) << ext;
+      EXPECT_EQ(faces(back).size(), faces(m).size()) << ext;
+      EXPECT_EQ(vertices(back).size(), vertices(m).size()) << ext;
+    }
 }
 
 TYPED_TEST(Io_mesh, large_polygons)

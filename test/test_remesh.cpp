@@ -185,6 +185,42 @@ std::size_t component_count(const Mesh& m)
 // feature, every dihedral angle under 23 degrees) refined to a third of its
 // edge length stays one closed surface of genus 1 (V - E + F = 0), and every
 // vertex stays on the input, within the input's chord error of the true torus.
+// collect_garbage(false) leaves the collapses' removed elements in a
+// Surface_mesh (as CGAL's remeshing does; the CLI writes around them): the
+// same mesh otherwise, which collect_garbage() then makes element for
+// element the one the default call returns; with threads and without.
+TEST(Remesh_garbage, left_uncollected_the_mesh_is_the_same_once_collected)
+{
+  for (bool threads : {false, true}) {
+    Surface_mesh collected = to_mesh<Surface_mesh>(icosphere(4));
+    Surface_mesh left = collected;
+    const double L = 2.5 * mean_edge_length(collected);  // coarser: many collapses
+    auto remesh = [&](Surface_mesh& m, bool gc) {
+      auto np = MP::collect_garbage(gc, MP::number_of_iterations(3));
+      return threads ? mrepair::isotropic_remesh<CGAL::Parallel_if_available_tag>(m, L, np)
+                     : mrepair::isotropic_remesh(m, L, np);
+    };
+    const mrepair::Remeshing_result a = remesh(collected, true), b = remesh(left, false);
+    ASSERT_EQ(a.status, mrepair::Status::ok);
+    ASSERT_EQ(b.status, mrepair::Status::ok);
+    EXPECT_FALSE(collected.has_garbage());
+    EXPECT_TRUE(left.has_garbage());
+    expect_valid(left);
+    EXPECT_EQ(a.faces_after, b.faces_after);
+    EXPECT_EQ(b.faces_after, faces(left).size());
+    EXPECT_EQ(a.collapses, b.collapses);
+    EXPECT_GT(b.collapses, 100u);
+    left.collect_garbage();
+    ASSERT_EQ(left.number_of_vertices(), collected.number_of_vertices());
+    ASSERT_EQ(left.number_of_faces(), collected.number_of_faces());
+    for (auto v : vertices(left)) ASSERT_EQ(left.point(v), collected.point(v));
+    for (auto f : faces(left)) {
+      auto h = left.halfedge(f), g = collected.halfedge(f);
+      for (int k = 0; k < 3; ++k, h = left.next(h), g = collected.next(g)) ASSERT_EQ(left.target(h), collected.target(g));
+    }
+  }
+}
+
 TYPED_TEST(Remesh, torus_keeps_its_genus_and_stays_on_the_surface)
 {
   using Mesh = typename TypeParam::Mesh;

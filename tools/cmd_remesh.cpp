@@ -73,10 +73,13 @@ int run(int argc, char** argv)
     return cli::fail(a.positional[0] + ": " + error);
 
   const std::size_t vertices_in = mesh.number_of_vertices();
-  auto np = mrepair::parameters::remesh_feature_angle(feature_angle)
-                .number_of_iterations(iterations)
-                .protect_constraints(a.has("protect-features"))
-                .visitor(std::ref(printer));
+  // the writer skips the collapses' removed elements: no collect_garbage
+  // (a sequential pass over every property array, 0.05 s at 1M faces)
+  auto np = mrepair::parameters::collect_garbage(
+      false, mrepair::parameters::remesh_feature_angle(feature_angle)
+                 .number_of_iterations(iterations)
+                 .protect_constraints(a.has("protect-features"))
+                 .visitor(std::ref(printer)));
   mrepair::Remeshing_result r;
   const bool seq = a.has("sequential");
   double seconds = cli::timed([&] {

@@ -72,6 +72,7 @@ Remeshing_result remesh_entry(TriangleMesh& tm, const FaceRange* part, Remesh_mo
   o.project = choose_parameter(get_parameter(np, CGAL::internal_np::do_project), true);
   o.density = internal::get_or(np, internal_np::remesh_density_factor, 1.);
   o.gamma = internal::get_or(np, internal_np::remesh_gamma, 1.);
+  o.collect_garbage = internal::get_or(np, internal_np::collect_garbage, true);
   o.has_ecm = !is_default_parameter<NP, CGAL::internal_np::edge_is_constrained_t>::value;
   // with a user edge map, detect sharp edges only when the angle is given too
   o.feature_angle =
@@ -137,11 +138,14 @@ Remeshing_result remesh_entry(TriangleMesh& tm, const FaceRange* part, Remesh_mo
 ///   - `mrepair::parameters::remesh_density_factor` (double, 1: target lengths divided by it)
 ///   - `visitor` (`mrepair::Default_visitor`; phases "setup", "split", "collapse", "flip", "relax",
 ///     "cleanup")
+///   - `mrepair::parameters::collect_garbage` (bool, true: on `Surface_mesh`, the elements the
+///     collapses removed are collected; false leaves them, as CGAL's remeshing does, and saves a
+///     pass over every property array, 0.05 s at 1M faces, when the mesh is written next)
 /// \pre `CGAL::is_valid_polygon_mesh(tm)`
 /// \return `Remeshing_result`; `tm` untouched when `status` reports bad input
 ///         (`empty_input`, `invalid_mesh`, `non_finite_input`, `invalid_parameter`);
 ///         `non_finite_input` also when the bounding-box diagonal exceeds 1e100.
-///         On `Surface_mesh`, garbage is collected.
+///         On `Surface_mesh`, garbage is collected unless `collect_garbage(false)`.
 template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh,
           typename CGAL_NP_TEMPLATE_PARAMETERS>
 Remeshing_result isotropic_remesh(TriangleMesh& tm, double target_edge_length,

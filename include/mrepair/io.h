@@ -215,12 +215,13 @@ Io_result write_polygon_mesh(const std::string& path, const PolygonMesh& pmesh, 
                              get_const_property_map(CGAL::vertex_point, pmesh));
   Io_result r;
   if constexpr (internal::Is_surface_mesh<PolygonMesh>::value) {
-    // written in place unless removed elements leave gaps in the indices
-    // (a user-given vertex index map is read through the copy alone)
-    if (!pmesh.has_garbage() &&
-        CGAL::parameters::is_default_parameter<NamedParameters, CGAL::internal_np::vertex_index_t>::value) {
-      internal::io::write_view(path, internal::io::Surface_mesh_view<typename PolygonMesh::Point, VPM>{pmesh, vpm},
-                               binary, r);
+    // written in place, removed elements skipped (a user-given vertex index
+    // map is read through the copy alone)
+    if (CGAL::parameters::is_default_parameter<NamedParameters, CGAL::internal_np::vertex_index_t>::value) {
+      using View = internal::io::Surface_mesh_view<typename PolygonMesh::Point, VPM>;
+      internal::io::fill_or_report_oom(path, r, [&] {
+        internal::io::write_view(path, View::with_gaps(pmesh, vpm), binary, r);
+      });
       return r;
     }
   }

@@ -48,6 +48,7 @@ struct Remesh_options
   bool has_ecm = false;      ///< an edge_is_constrained_map was given
   double min_edge_length = 0, max_edge_length = 0;  ///< adaptive mode
   bool has_min_edge_length = false;  ///< remesh_min_edge_length was given
+  bool collect_garbage = true;       ///< collect_garbage
 };
 
 /// a result with the mode and the counts of the input filled in.
@@ -275,7 +276,7 @@ Remeshing_result remesh_driver(TriangleMesh& tm, const FaceRange* part, Remesh_m
     res.flips = R.counters.flips;
   }
   // descriptors of the untouched rest stay valid when remeshing a part
-  if (whole) remesh_collect_garbage(tm);
+  if (whole && o.collect_garbage) remesh_collect_garbage(tm);
   res.status = st;
   if (st == Status::cancelled) res.message = "cancelled by the visitor; the mesh is valid";
   if (st == Status::partial && res.message.empty())

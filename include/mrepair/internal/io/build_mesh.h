@@ -13,6 +13,7 @@
 // mrepair never outputs).
 
 #include <mrepair/internal/halfedge_builder.h>
+#include <mrepair/internal/inspect/parallel.h>
 #include <mrepair/internal/utility.h>
 
 #include <boost/graph/graph_traits.hpp>
@@ -29,21 +30,31 @@ namespace internal {
 namespace io {
 
 /// the halfedge topology of a soup: corner c is the halfedge from vertex
-/// indices[c] to the next vertex of its polygon.
-class Soup_topology
+/// indices[c] to the next vertex of its polygon. `Index` holds corner and
+/// vertex numbers: 32 bits for every soup below 4G corners and points (half
+/// the memory to fill, and its page faults, at 1M faces 60 MB fewer), 64
+/// bits beyond (with_soup_topology chooses).
+template <class Index>
+class Basic_soup_topology
 {
-  // a corner and the target of its edge, grouped by source; 32-bit where the
-  // soup fits (every soup below 4G corners): half the memory to fill and sort
-  template <class Index>
+  // a corner and the target of its edge, grouped by source
   struct Out
   {
     Index dst, corner;
   };
 
 public:
-  static constexpr std::size_t none = no_corner;
-  std::vector<std::size_t> next, prev, opposite;  // per corner
-  std::vector<std::size_t> out_start, out;        // corners leaving each vertex (CSR)
+  static constexpr std::size_t none = no_corner;   ///< "no element" among the results of the checks
+  static constexpr Index absent = Index(-1);       ///< no opposite corner (a border edge)
+  std::vector<Index> next, prev, opposite;  // per corner
+  std::vector<Index> out_start, out;        // corners leaving each vertex (CSR)
+
+  /// the opposite of corner c, or no_corner on the border
+  std::size_t opposite_of(std::size_t c) const
+  {
+    return opposite[c] == absent ? no_corner : static_cast<std::size_t>(opposite[c]);
+  }
+  bool used(std::size_t v) const { return out_start[v + 1] != out_start[v]; }
 
   /// returns false with a reason when the soup is not a polygon mesh. The
   /// passes over polygons and vertices run in parallel blocks; the reason is
@@ -65,8 +76,8 @@ public:
           reason = "polygon " + std::to_string(f) + " has an index out of range";
           return false;
         }
-        next[c] = c + 1 < e ? c + 1 : b;
-        prev[c] = c > b ? c - 1 : e - 1;
+        next[c] = static_cast<Index>(c + 1 < e ? c + 1 : b);
+        prev[c] = static_cast<Index>(c > b ? c - 1 : e - 1);
       }
       // no vertex twice in a polygon (small polygons: pairwise; large: sorted copy)
       bool repeated = false;
@@ -86,11 +97,7 @@ public:
       return true;
     };
     if (first_failure(num_polygons, polygon_ok, why) != none) return false;
-    const bool narrow = nc < std::numeric_limits<std::uint32_t>::max() &&
-                        num_points < std::numeric_limits<std::uint32_t>::max();
-    if (!(narrow ? link_corners<std::uint32_t>(num_points, indices, nc, why)
-                 : link_corners<std::size_t>(num_points, indices, nc, why)))
-      return false;
+    if (!link_corners(num_points, indices, nc, why)) return false;
     // one fan per vertex: corners at v chained by c -> next[opposite[c]]
     auto fan_ok = [&](std::size_t v, std::string& reason) {
       const std::size_t deg = out_start[v + 1] - out_start[v];
@@ -98,7 +105,7 @@ public:
       std::size_t start = none, starts_count = 0;
       for (std::size_t k = out_start[v]; k < out_start[v + 1]; ++k) {
         const std::size_t c = out[k];
-        if (opposite[prev[c]] == none) {
+        if (opposite[prev[c]] == absent) {
           ++starts_count;
           start = c;
         }
@@ -111,7 +118,7 @@ public:
       std::size_t steps = 0, c = start;
       do {
         ++steps;
-        c = opposite[c] == none ? none : next[opposite[c]];
+        c = opposite[c] == absent ? none : static_cast<std::size_t>(next[opposite[c]]);
       } while (c != none && c != start && steps <= deg);
       if (steps != deg) {
         reason = "vertex " + std::to_string(v) + " is non-manifold (several fans of faces)";
@@ -126,7 +133,6 @@ private:
   /// the corners grouped by source vertex (out_start, out) and each corner's
   /// opposite, with the checks of the groups (no edge used twice in the same
   /// direction, no degenerate edge); false with the first failure in `why`.
-  template <class Index>
   bool link_corners(std::size_t num_points, const std::int64_t* indices, std::size_t nc, std::string& why)
   {
     auto src = [&](std::size_t c) { return static_cast<std::size_t>(indices[c]); };
@@ -134,28 +140,26 @@ private:
 
     // corners grouped by source vertex, each group sorted by target; the
     // target is stored beside the corner so that lookups stay in one group
-    out_start.assign(num_points + 1, 0);
-    for (std::size_t c = 0; c < nc; ++c) ++out_start[src(c) + 1];
-    for (std::size_t v = 0; v < num_points; ++v) out_start[v + 1] += out_start[v];
-    std::vector<Out<Index>> adj(nc);
-    {
-      std::vector<std::size_t> fill(num_points);
-      std::copy(out_start.begin(), out_start.begin() + static_cast<std::ptrdiff_t>(num_points),
-                fill.begin());
-      for (std::size_t c = 0; c < nc; ++c)
-        adj[fill[src(c)]++] = Out<Index>{static_cast<Index>(dst(c)), static_cast<Index>(c)};
-    }
+    // (a stable counting sort by source, parallel at 1M corners and up: each
+    // group keeps its corners in increasing order, as one sequential pass)
+    bucket_items(nc, num_points, absent, [&](std::size_t c) { return static_cast<Index>(src(c)); },
+                 out_start, out);
+    std::vector<Out> adj(nc);
+    parallel_blocks(nc, [&](std::size_t k) {
+      const std::size_t c = out[k];
+      adj[k] = Out{static_cast<Index>(dst(c)), static_cast<Index>(c)};
+    });
     auto group_ok = [&](std::size_t v, std::string& reason) {
       if (out_start[v] == out_start[v + 1]) return true;  // no corner (adj may be empty: no pointer arithmetic)
-      Out<Index>* b = adj.data() + out_start[v];
-      Out<Index>* e = adj.data() + out_start[v + 1];
+      Out* b = adj.data() + out_start[v];
+      Out* e = adj.data() + out_start[v + 1];
       if (e - b <= 16) {  // insertion sort: groups are small (valence)
-        for (Out<Index>* i = b + 1; i < e; ++i)
-          for (Out<Index>* j = i; j > b && j->dst < (j - 1)->dst; --j) std::swap(*j, *(j - 1));
+        for (Out* i = b + 1; i < e; ++i)
+          for (Out* j = i; j > b && j->dst < (j - 1)->dst; --j) std::swap(*j, *(j - 1));
       } else {
-        std::sort(b, e, [](const Out<Index>& x, const Out<Index>& y) { return x.dst < y.dst; });
+        std::sort(b, e, [](const Out& x, const Out& y) { return x.dst < y.dst; });
       }
-      for (Out<Index>* it = b; it != e; ++it) {
+      for (Out* it = b; it != e; ++it) {
         if (it->dst == v) {
           reason = "a polygon repeats vertex " + std::to_string(v);
           return false;
@@ -170,17 +174,16 @@ private:
     };
     if (first_failure(num_points, group_ok, why) != none) return false;
     // opposite of corner c (u -> w): the corner w -> u
-    opposite.assign(nc, none);
-    out.resize(nc);
+    opposite.assign(nc, absent);
     parallel_blocks(num_points, [&](std::size_t u) {
       for (std::size_t k = out_start[u]; k < out_start[u + 1]; ++k) {
         out[k] = adj[k].corner;
         const std::size_t w = adj[k].dst;
-        const Out<Index>* b = adj.data() + out_start[w];
-        const Out<Index>* e = adj.data() + out_start[w + 1];
-        const Out<Index>* it =
-            e - b <= 16 ? std::find_if(b, e, [u](const Out<Index>& o) { return o.dst == u; })
-                        : std::lower_bound(b, e, u, [](const Out<Index>& o, std::size_t t) { return o.dst < t; });
+        const Out* b = adj.data() + out_start[w];
+        const Out* e = adj.data() + out_start[w + 1];
+        const Out* it =
+            e - b <= 16 ? std::find_if(b, e, [u](const Out& o) { return o.dst == u; })
+                        : std::lower_bound(b, e, u, [](const Out& o, std::size_t t) { return o.dst < t; });
         if (it != e && it->dst == u) opposite[adj[k].corner] = it->corner;
       }
     });
@@ -224,17 +227,34 @@ private:
   }
 };
 
+using Soup_topology = Basic_soup_topology<std::size_t>;
+
+/// calls f(topology) with an empty topology of the narrowest index type that
+/// holds `num_points` points and `num_corners` corners
+template <class F>
+void with_soup_topology(std::size_t num_points, std::size_t num_corners, const F& f)
+{
+  if (num_corners < std::numeric_limits<std::uint32_t>::max() &&
+      num_points < std::numeric_limits<std::uint32_t>::max()) {
+    Basic_soup_topology<std::uint32_t> t;
+    f(t);
+  } else {
+    Basic_soup_topology<std::size_t> t;
+    f(t);
+  }
+}
+
 /// builds `g` (assumed empty) from a soup whose topology `t` was computed
 /// successfully; `put_point(v, i)` stores point i at vertex v.
-template <class PolygonMesh, class PutPoint>
-void build_mesh(const Soup_topology& t, std::size_t num_points, const std::int64_t* indices,
+template <class Topology, class PolygonMesh, class PutPoint>
+void build_mesh(const Topology& t, std::size_t num_points, const std::int64_t* indices,
                 const std::size_t* starts, std::size_t num_polygons, PolygonMesh& g,
                 PutPoint put_point)
 {
   // the soup as a corner table for the halfedge builder
   struct Corners
   {
-    const Soup_topology& t;
+    const Topology& t;
     std::size_t np;
     const std::int64_t* indices;
     const std::size_t* starts;
@@ -246,15 +266,17 @@ void build_mesh(const Soup_topology& t, std::size_t num_points, const std::int64
     std::size_t end(std::size_t f) const { return starts[f + 1]; }
     std::size_t source(std::size_t c) const { return static_cast<std::size_t>(indices[c]); }
     std::size_t next(std::size_t c) const { return t.next[c]; }
-    std::size_t opposite(std::size_t c) const { return t.opposite[c]; }
+    std::size_t opposite(std::size_t c) const { return t.opposite_of(c); }
     // only points used by a polygon: no isolated vertex (5.5's validity check rejects one)
-    bool used(std::size_t v) const { return t.out_start[v + 1] != t.out_start[v]; }
+    bool used(std::size_t v) const { return t.used(v); }
   };
   const Corners m{t, num_points, indices, starts, num_polygons};
-  std::size_t num_edges = 0, num_used = 0;
+  std::size_t num_used = 0;
   for (std::size_t i = 0; i < num_points; ++i) num_used += m.used(i);
-  for (std::size_t c = 0; c < m.num_corners(); ++c)
-    if (t.opposite[c] == Soup_topology::none || c < t.opposite[c]) ++num_edges;
+  // an edge per pair of opposite corners and per border corner
+  const std::size_t border =
+      static_cast<std::size_t>(std::count(t.opposite.begin(), t.opposite.end(), Topology::absent));
+  const std::size_t num_edges = (m.num_corners() + border) / 2;
   build_halfedge_mesh(g, m, Element_counts{num_used, num_edges, num_polygons}, put_point);
 }
 

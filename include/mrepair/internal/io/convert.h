@@ -142,32 +142,57 @@ struct Vectors_view
       std::is_floating_point<std::decay_t<decltype(std::declval<const Point&>().x())>>::value;
 };
 
-/// a `Surface_mesh` without removed elements as the writers read it, with no
-/// intermediate copy (a 10M-face mesh's copy is 440 MB and a sequential pass):
-/// point i is vertex i, polygon f is face f with its vertices in the order of
-/// `vertices_around_face(halfedge(f))`, as `mesh_to_raw` numbers them.
+/// a `Surface_mesh` as the writers read it, with no intermediate copy (a
+/// 10M-face mesh's copy is 440 MB and a sequential pass): polygon f has its
+/// vertices in the order of `vertices_around_face(halfedge(f))`. Without
+/// removed elements point i is vertex i and polygon f face f; with them
+/// (`with_gaps`), the kept elements in index order, as `mesh_to_raw` numbers
+/// them, through two slot tables and a renumbering of the vertices.
 template <class P, class VertexPointMap>
 struct Surface_mesh_view
 {
   using Mesh = CGAL::Surface_mesh<P>;
+  using size_type = typename Mesh::size_type;
   const Mesh& m;
   VertexPointMap vpm;
+  std::vector<size_type> vertex_slot, face_slot;  // output index -> mesh index (empty: the same)
+  std::vector<size_type> vertex_number;           // mesh vertex index -> output index
+
+  /// the view of a mesh that may have removed elements
+  static Surface_mesh_view with_gaps(const Mesh& mesh, VertexPointMap map)
+  {
+    Surface_mesh_view view{mesh, map, {}, {}, {}};
+    if (!mesh.has_garbage()) return view;
+    view.vertex_number.assign(mesh.num_vertices(), size_type(-1));
+    view.vertex_slot.reserve(mesh.number_of_vertices());
+    for (auto v : vertices(mesh)) {
+      view.vertex_number[static_cast<size_type>(v)] = static_cast<size_type>(view.vertex_slot.size());
+      view.vertex_slot.push_back(static_cast<size_type>(v));
+    }
+    view.face_slot.reserve(mesh.number_of_faces());
+    for (auto f : faces(mesh)) view.face_slot.push_back(static_cast<size_type>(f));
+    return view;
+  }
+  bool gaps() const { return !vertex_number.empty(); }
   std::size_t num_points() const { return m.number_of_vertices(); }
   std::size_t num_polygons() const { return m.number_of_faces(); }
   void point(std::size_t i, double* c) const
   {
-    const auto& p = get(vpm, typename Mesh::Vertex_index(static_cast<typename Mesh::size_type>(i)));
+    const size_type slot = gaps() ? vertex_slot[i] : static_cast<size_type>(i);
+    const auto& p = get(vpm, typename Mesh::Vertex_index(slot));
     for (int d = 0; d < 3; ++d) c[d] = coordinate(p, d);
   }
-  std::size_t degree(std::size_t f) const
+  typename Mesh::Face_index face(std::size_t f) const
   {
-    return static_cast<std::size_t>(m.degree(typename Mesh::Face_index(static_cast<typename Mesh::size_type>(f))));
+    return typename Mesh::Face_index(gaps() ? face_slot[f] : static_cast<size_type>(f));
   }
+  std::size_t degree(std::size_t f) const { return static_cast<std::size_t>(m.degree(face(f))); }
   std::int64_t index(std::size_t f, std::size_t k) const
   {
-    auto h = m.halfedge(typename Mesh::Face_index(static_cast<typename Mesh::size_type>(f)));
+    auto h = m.halfedge(face(f));
     for (; k > 0; --k) h = m.next(h);
-    return static_cast<std::int64_t>(static_cast<typename Mesh::size_type>(m.target(h)));
+    const size_type v = static_cast<size_type>(m.target(h));
+    return static_cast<std::int64_t>(gaps() ? vertex_number[v] : v);
   }
   const double* xyz() const { return nullptr; }
   /// the mesh's own point map (an array) and plain floating-point coordinates
@@ -218,20 +243,24 @@ void raw_to_mesh(const std::string& path, const Raw_soup& raw, PolygonMesh& pmes
   using Point = typename boost::property_traits<VertexPointMap>::value_type;
   try {
     // the same test as PMP::is_polygon_soup_a_polygon_mesh, on flat arrays
-    Soup_topology topology;
-    std::string why;
-    if (!topology.compute(raw.num_points(), raw.indices.data(), raw.starts.data(),
-                          raw.num_polygons(), why)) {
-      r.status = Status::non_manifold_input;
-      r.message = path + ": not a manifold, consistently oriented polygon mesh (" + why +
-                  "); run `mrepair soup` first";
-      return;
-    }
-    build_mesh(topology, raw.num_points(), raw.indices.data(), raw.starts.data(),
-               raw.num_polygons(), pmesh, [&](auto v, std::size_t i) {
-                 const double* q = &raw.xyz[3 * i];
-                 put(vpm, v, Point(q[0], q[1], q[2]));
-               });
+    bool is_mesh = true;
+    with_soup_topology(raw.num_points(), raw.indices.size(), [&](auto& topology) {
+      std::string why;
+      if (!topology.compute(raw.num_points(), raw.indices.data(), raw.starts.data(),
+                            raw.num_polygons(), why)) {
+        r.status = Status::non_manifold_input;
+        r.message = path + ": not a manifold, consistently oriented polygon mesh (" + why +
+                    "); run `mrepair soup` first";
+        is_mesh = false;
+        return;
+      }
+      build_mesh(topology, raw.num_points(), raw.indices.data(), raw.starts.data(),
+                 raw.num_polygons(), pmesh, [&](auto v, std::size_t i) {
+                   const double* q = &raw.xyz[3 * i];
+                   put(vpm, v, Point(q[0], q[1], q[2]));
+                 });
+    });
+    if (!is_mesh) return;
     const std::size_t isolated = r.points - static_cast<std::size_t>(vertices(pmesh).size());
     if (isolated)
       r.message += (r.message.empty() ? path + ": " : std::string("; ")) +
@@ -260,8 +289,11 @@ bool is_soup_a_mesh(const PolygonRange& polygons, std::size_t num_points, std::s
     }
     starts.push_back(indices.size());
   }
-  Soup_topology topology;
-  return topology.compute(num_points, indices.data(), starts.data(), polygons.size(), why);
+  bool is_mesh = false;
+  with_soup_topology(num_points, indices.size(), [&](auto& topology) {
+    is_mesh = topology.compute(num_points, indices.data(), starts.data(), polygons.size(), why);
+  });
+  return is_mesh;
 }
 
 } // namespace io

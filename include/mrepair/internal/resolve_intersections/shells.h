@@ -150,15 +150,16 @@ void build_from_triangles(const std::vector<Point>& points, const std::vector<st
     corners.insert(corners.end(), t.begin(), t.end());
     starts.push_back(corners.size());
   }
-  io::Soup_topology topology;
-  std::string why;
-  if (!topology.compute(points.size(), corners.data(), starts.data(), triangles.size(), why)) {
-    CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, triangles, out);
-    return;
-  }
-  auto out_points = get(CGAL::vertex_point, out);
-  io::build_mesh(topology, points.size(), corners.data(), starts.data(), triangles.size(), out,
-                 [&](vertex_descriptor v, std::size_t i) { put(out_points, v, points[i]); });
+  io::with_soup_topology(points.size(), corners.size(), [&](auto& topology) {
+    std::string why;
+    if (!topology.compute(points.size(), corners.data(), starts.data(), triangles.size(), why)) {
+      CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, triangles, out);
+      return;
+    }
+    auto out_points = get(CGAL::vertex_point, out);
+    io::build_mesh(topology, points.size(), corners.data(), starts.data(), triangles.size(), out,
+                   [&](vertex_descriptor v, std::size_t i) { put(out_points, v, points[i]); });
+  });
 }
 
 // Copies the faces `fs` of `pm` (one or more whole components, triangles)
