@@ -4,6 +4,7 @@
 
 #include <mrepair/definitions.h>
 #include <mrepair/internal/utility.h>
+#include <mrepair/internal/vertex_order.h>
 
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -176,6 +177,11 @@ public:
     for (halfedge_descriptor h : es) length_sum_ += get(hstats_, h).length;
     edge_count_ = es.size();
     std::vector<vertex_descriptor> vs(vertices(*tm_).begin(), vertices(*tm_).end());
+    if (parallel_) {
+      // each vertex writes its own statistics: any order, the fastest
+      std::vector<vertex_descriptor> buffer;
+      internal::sort_by_halfedge(*tm_, vs, buffer);
+    }
     for_each(vs, [this](vertex_descriptor v) { compute_vertex(v); });
     // The marks need no initialisation: Surface_mesh value-initialises new
     // property entries and Polyhedron's hash map inserts V() on first get.

@@ -25,7 +25,7 @@
 #define MREPAIR_INTERNAL_ADAPTIVE_REMESH_REMESHER_H
 
 #include <mrepair/internal/adaptive_remesh/reference_surface.h>
-#include <mrepair/internal/inspect/parallel.h>
+#include <mrepair/internal/vertex_order.h>
 #include <mrepair/internal/utility.h>
 #include <mrepair/status.h>
 
@@ -1071,24 +1071,12 @@ public:
     std::vector<vertex_descriptor> order;
   };
 
-  // Puts the vertices in the order of their halfedges' indices (to a block
-  // of 16). Each vertex's move is computed from the positions before the
-  // round alone, so the order changes no result; but the halfedges and the
-  // reference triangles a vertex reads lie near those of its predecessor
-  // (where a file lists faces in another order than vertices, the walks in
-  // vertex order read the 48 MB of halfedges of a 1M-face mesh at random).
+  // the vertices in the order of their halfedges (internal/vertex_order.h):
+  // each vertex's move is computed from the positions before the round
+  // alone, so the order changes no result, only the time
   void in_halfedge_order(std::vector<vertex_descriptor>& vs, std::vector<vertex_descriptor>& buffer) const
   {
-    if (vs.size() < (std::size_t(1) << 16)) return;
-    using size_type = typename TriangleMesh::size_type;
-    constexpr int block = 4;
-    std::vector<size_type> first, order;
-    bucket_items(vs.size(), (static_cast<std::size_t>(tm_.num_halfedges()) >> block) + 1, size_type(-1),
-                 [&](std::size_t i) { return static_cast<size_type>(static_cast<size_type>(halfedge(vs[i], tm_)) >> block); },
-                 first, order);
-    buffer.resize(vs.size());
-    parallel_for_index(vs.size(), 1 << 14, [&](std::size_t k) { buffer[k] = vs[order[k]]; });
-    vs.swap(buffer);
+    sort_by_halfedge(tm_, vs, buffer);
   }
   Relax_buffers relax_buffers_;
 

@@ -164,14 +164,34 @@ struct Surface_mesh_view
     Surface_mesh_view view{mesh, map, {}, {}, {}};
     if (!mesh.has_garbage()) return view;
     view.vertex_number.assign(mesh.num_vertices(), size_type(-1));
-    view.vertex_slot.reserve(mesh.number_of_vertices());
-    for (auto v : vertices(mesh)) {
-      view.vertex_number[static_cast<size_type>(v)] = static_cast<size_type>(view.vertex_slot.size());
-      view.vertex_slot.push_back(static_cast<size_type>(v));
-    }
-    view.face_slot.reserve(mesh.number_of_faces());
-    for (auto f : faces(mesh)) view.face_slot.push_back(static_cast<size_type>(f));
+    kept_slots<typename Mesh::Vertex_index>(mesh, mesh.num_vertices(), view.vertex_slot, &view.vertex_number);
+    kept_slots<typename Mesh::Face_index>(mesh, mesh.num_faces(), view.face_slot, nullptr);
     return view;
+  }
+  // the indices of the elements of one kind not removed, in order (and, when
+  // `number` is given, each one's position among them): counts per block,
+  // then the fill, both in parallel
+  template <class Index>
+  static void kept_slots(const Mesh& mesh, std::size_t slots, std::vector<size_type>& kept,
+                         std::vector<size_type>* number)
+  {
+    constexpr std::size_t block = std::size_t(1) << 14;
+    const std::size_t blocks = (slots + block - 1) / block;
+    auto kept_in = [&](std::size_t i) { return !mesh.is_removed(Index(static_cast<size_type>(i))); };
+    std::vector<std::size_t> start(blocks + 1, 0);
+    parallel_for_index(blocks, 1, [&](std::size_t b) {
+      for (std::size_t i = b * block; i < std::min(slots, (b + 1) * block); ++i) start[b + 1] += kept_in(i);
+    });
+    for (std::size_t b = 0; b < blocks; ++b) start[b + 1] += start[b];
+    kept.resize(start[blocks]);
+    parallel_for_index(blocks, 1, [&](std::size_t b) {
+      std::size_t at = start[b];
+      for (std::size_t i = b * block; i < std::min(slots, (b + 1) * block); ++i)
+        if (kept_in(i)) {
+          if (number) (*number)[i] = static_cast<size_type>(at);
+          kept[at++] = static_cast<size_type>(i);
+        }
+    });
   }
   bool gaps() const { return !vertex_number.empty(); }
   std::size_t num_points() const { return m.number_of_vertices(); }
