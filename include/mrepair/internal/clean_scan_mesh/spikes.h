@@ -12,7 +12,6 @@
 #include <mrepair/internal/local_operations.h>
 #include <mrepair/internal/clean_scan_mesh/common.h>
 #include <mrepair/internal/clean_scan_mesh/spike_criterion.h>
-#include <mrepair/internal/vertex_order.h>
 
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -97,10 +96,7 @@ void spiked_among(const Geometric_statistics<Mesh, VPM>& st, const Spike_setting
 {
   std::vector<unsigned char> flag(candidates.size(), 0);
   Spike_detector<Mesh, VPM> det(st, s);
-  // visited in their halfedges' order (each writes its own flag)
-  const std::vector<std::uint32_t> order = halfedge_order(st.mesh(), candidates);
-  parallel_for_mesh_elements<Mesh>(candidates.size(), [&](std::size_t k) {
-    const std::size_t i = order.empty() ? k : order[k];
+  parallel_for_mesh_elements<Mesh>(candidates.size(), [&](std::size_t i) {
     if (det.by_dihedral(candidates[i])) flag[i] = 1;
     else if (det.by_height(candidates[i])) flag[i] = 2;
   });
