@@ -271,7 +271,7 @@ public:
     for_each_index(fs.size(), [&](std::size_t i) { position[static_cast<size_type>(fs[i])] = static_cast<int>(i); });
     std::vector<vertex_descriptor> vs;
     vertices_where(vs, [](vertex_descriptor) { return true; });
-    in_halfedge_order(vs, relax_buffers_.order);
+    sort_by_halfedge(tm_, vs, relax_buffers_.order);
     constexpr std::size_t none = static_cast<std::size_t>(-1);
     std::vector<std::size_t> first(vs.size(), none);
     for_each_index(vs.size(), [&](std::size_t j) {
@@ -745,7 +745,7 @@ public:
   {
     std::vector<vertex_descriptor> vs;
     vertices_where(vs, [](vertex_descriptor) { return true; });
-    if constexpr (parallel_) in_halfedge_order(vs, relax_buffers_.order);
+    if constexpr (parallel_) sort_by_halfedge(tm_, vs, relax_buffers_.order);
     for_each_index(vs.size(), [&](std::size_t i) { put(deg_, vs[i], static_cast<int>(degree(vs[i], tm_))); });
     std::vector<edge_descriptor> cand;
     edges_where(cand, [&](edge_descriptor e) { return get(flag_, e) == 0; });
@@ -1068,16 +1068,9 @@ public:
     std::vector<Vec3> np, normal, old;
     std::vector<double> ns;
     std::vector<char> bad, undone;
-    std::vector<vertex_descriptor> order;
+    std::vector<vertex_descriptor> order;  // scratch of sort_by_halfedge, for every vertex pass
   };
 
-  // the vertices in the order of their halfedges (internal/vertex_order.h):
-  // each vertex's move is computed from the positions before the round
-  // alone, so the order changes no result, only the time
-  void in_halfedge_order(std::vector<vertex_descriptor>& vs, std::vector<vertex_descriptor>& buffer) const
-  {
-    sort_by_halfedge(tm_, vs, buffer);
-  }
   Relax_buffers relax_buffers_;
 
   void relax_and_project(bool project)
@@ -1089,7 +1082,10 @@ public:
     vertices_where(vs, [&](vertex_descriptor v) {
       return get(kind_, v) == V_FREE || (relax_lines_ && get(kind_, v) == V_LINE);
     });
-    if constexpr (parallel_) in_halfedge_order(vs, relax_buffers_.order);
+    // in the order of their halfedges (internal/vertex_order.h): each move is
+    // computed from the positions before the round, so the order changes no
+    // result, only the time
+    if constexpr (parallel_) sort_by_halfedge(tm_, vs, relax_buffers_.order);
     auto& np = relax_buffers_.np;
     auto& normal = relax_buffers_.normal;
     auto& old = relax_buffers_.old;
