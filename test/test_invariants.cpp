@@ -669,7 +669,7 @@ TYPED_TEST(Invariants, RandomSoupsThroughEveryCall)
         if (!finite) { EXPECT_EQ(r.status, Status::non_finite_input) << ctx; }
         if (mrepair::succeeded(r.status)) {
           EXPECT_EQ(f0 - r.local_faces_removed + r.local_faces_added - r.union_faces_removed + r.union_faces_added -
-                        r.solid_faces_removed + r.solid_faces_added,
+                        r.solid_faces_removed + r.solid_faces_added + r.cap_faces_added,
                     nfaces(m)) << ctx;
           EXPECT_EQ(r.intersection_free, r.crossing_pairs_after == 0) << ctx;
           EXPECT_EQ(r.status == Status::ok, r.crossing_pairs_after == 0) << ctx;

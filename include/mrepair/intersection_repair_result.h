@@ -42,6 +42,10 @@ struct Intersection_repair_result
   std::size_t shells_solidified = 0;      ///< closed shells replaced by one solid (winding numbers)
   std::size_t solid_faces_removed = 0;    ///< their faces
   std::size_t solid_faces_added = 0;      ///< the solid's faces
+  /// open parts resting on a solid without crossing it (a dome on a body,
+  /// its rim on or near the body's surface), closed by caps of their loops
+  std::size_t open_parts_capped = 0;
+  std::size_t cap_faces_added = 0;        ///< those caps' faces
   std::size_t arrangement_faces = 0;      ///< faces of the (last) exact arrangement
   /// why the solidification left the closed shells as they were (empty: it did
   /// not, or did not run): `arrangement_too_large`, `arrangement_failed`,
@@ -79,6 +83,8 @@ struct Intersection_repair_result
     f("shells_solidified", &R::shells_solidified);
     f("solid_faces_removed", &R::solid_faces_removed);
     f("solid_faces_added", &R::solid_faces_added);
+    f("open_parts_capped", &R::open_parts_capped);
+    f("cap_faces_added", &R::cap_faces_added);
     f("arrangement_faces", &R::arrangement_faces);
     f("crossing_pairs_after", &R::crossing_pairs_after);
     f("touching_pairs_after", &R::touching_pairs_after);

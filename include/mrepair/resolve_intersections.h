@@ -127,6 +127,8 @@ Intersection_repair_result resolve_intersections(TriangleMesh& tm,
   r.shells_solidified = c.shells_solidified;
   r.solid_faces_removed = c.solid_faces_removed;
   r.solid_faces_added = c.solid_faces_added;
+  r.open_parts_capped = c.open_parts_capped;
+  r.cap_faces_added = c.cap_faces_added;
   r.arrangement_faces = c.arrangement_faces;
   r.solidify_note = c.solidify_note;
   r.crossing_pairs_after = c.crossing_after;

@@ -363,10 +363,12 @@ Repair_result run_repair_job(std::vector<Point>& points, std::vector<Polygon>& p
     added.emplace_back("resolve_intersections_union", ir.union_faces_added);
     removed.emplace_back("resolve_intersections_solid", ir.solid_faces_removed);
     added.emplace_back("resolve_intersections_solid", ir.solid_faces_added);
+    added.emplace_back("resolve_intersections_caps", ir.cap_faces_added);
     Report& rr = report.section("resolve_intersections");
     ir.to_report(rr);
     const bool changed =
-        ir.local_faces_removed + ir.local_faces_added + ir.union_faces_removed + ir.solid_faces_removed > 0;
+        ir.local_faces_removed + ir.local_faces_added + ir.union_faces_removed + ir.solid_faces_removed +
+            ir.cap_faces_added > 0;
     // its last count is of its output (taken after its last change)
     crossings_known = succeeded(ir.status);
     if (changed && succeeded(ir.status)) {

@@ -58,6 +58,10 @@ struct Resolver_settings
   // counts as stuck into them within this share of its loop's size (see
   // cap_parts_stuck_into_solids)
   double rim_outside_share = 0.1;
+  // the same for an open part that crosses nothing and rests on a solid
+  // (cap_parts_resting_on_solids): a dome whose rim follows a curved body
+  // at up to a fifth of the rim's size (the doorman's buttons: 0.1-11%)
+  double rim_resting_share = 0.2;
   std::size_t sheet_cap_rounds = 4;
 };
 
@@ -77,6 +81,7 @@ struct Resolver_counts
   std::size_t unions_failed = 0;
   std::size_t shells_solidified = 0;   // closed shells replaced by the winding-number solid
   std::size_t solid_faces_removed = 0, solid_faces_added = 0;
+  std::size_t open_parts_capped = 0, cap_faces_added = 0;  // parts resting on a solid
   std::size_t arrangement_faces = 0;   // of the last arrangement
   std::size_t arrangement_passes = 0;
   std::string solidify_note;           // why the solidification left the shells as they were
@@ -150,6 +155,12 @@ private:
   template <typename Visitor>
   Status finish(Crossing_scan<PM> scan, Visitor& visitor)
   {
+    // after the solid: the parts that rest on it (the solid's shells may
+    // have been open before it)
+    if (settings_.solidify && settings_.merge_shells) {
+      if (visitor.stop_requested()) return Status::cancelled;
+      cap_parts_resting_on_solids(scan);
+    }
     // the local repair leaves `scan` current; a union needs a new one
     if (!scan.crossing.empty()) {
       if (visitor.stop_requested()) return Status::cancelled;
@@ -311,7 +322,7 @@ private:
   // the closed shells that take part in a crossing (non-zero winding number
   // of those shells, exact ray casts: compare_to_reference's test) get their
   // caps (moved to `caps`) and count as solids. A border point outside them
-  // by at most rim_outside_share of its loop's bounding-box diagonal counts
+  // by at most `outside_share` of its loop's bounding-box diagonal counts
   // as inside: a part modelled sitting on a curved body has its rim on the
   // smooth surface, a little off the body's facets (the doorman's buttons:
   // 0.8-5% of their loop outside, where the parts that merely cross another
@@ -320,17 +331,19 @@ private:
   // at most sheet_cap_rounds rounds.
   void cap_parts_stuck_into_solids(const std::vector<Shell<PM>>& shells, std::vector<signed char>& solid_shell,
                                    std::map<std::size_t, std::vector<std::array<vertex_descriptor, 3>>>& sheet_caps,
-                                   std::map<std::size_t, std::vector<std::array<vertex_descriptor, 3>>>& caps) const
+                                   std::map<std::size_t, std::vector<std::array<vertex_descriptor, 3>>>& caps,
+                                   double outside_share) const
   {
     for (std::size_t round = 0; round < settings_.sheet_cap_rounds && !sheet_caps.empty(); ++round)
-      if (!cap_parts_stuck_into(shells, solid_shell, sheet_caps, caps)) break;
+      if (!cap_parts_stuck_into(shells, solid_shell, sheet_caps, caps, outside_share)) break;
   }
 
   // One round of cap_parts_stuck_into_solids(): the solids are the closed
   // shells and the capped ones; false when no part was capped.
   bool cap_parts_stuck_into(const std::vector<Shell<PM>>& shells, std::vector<signed char>& solid_shell,
                             std::map<std::size_t, std::vector<std::array<vertex_descriptor, 3>>>& sheet_caps,
-                            std::map<std::size_t, std::vector<std::array<vertex_descriptor, 3>>>& caps) const
+                            std::map<std::size_t, std::vector<std::array<vertex_descriptor, 3>>>& caps,
+                            double outside_share) const
   {
     using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
     using Work_mesh = CGAL::Surface_mesh<Epick::Point_3>;
@@ -402,7 +415,7 @@ private:
         const double loop_size = std::sqrt(CGAL::square(box.xmax() - box.xmin()) +
                                            CGAL::square(box.ymax() - box.ymin()) +
                                            CGAL::square(box.zmax() - box.zmin()));
-        const double allowed = settings_.rim_outside_share * loop_size;
+        const double allowed = outside_share * loop_size;
         if (tree.squared_distance(q) <= allowed * allowed) continue;
         int winding = 0;
         if (!winding_number(tree, solids, wvpm, q, reach, winding) || winding == 0) {
@@ -420,6 +433,107 @@ private:
       capped_any = true;
     }
     return capped_any;
+  }
+
+  // ------------------------------------------------------ resting parts
+  // Open parts that rest on a solid without crossing anything (a button
+  // modelled as an open dome on a coat, its rim a little off the coat's
+  // facets: the doorman's buttons lie 0.1-11% of their rim's size away). The
+  // hole filler left their loops open as a sheet's border; their rims lie
+  // inside or near the closed shells (cap_parts_stuck_into_solids' test), so
+  // they are parts, and their loops get Liepa's caps in place: the part
+  // becomes closed. A cap in a crossing the mesh did not have is taken back
+  // (its part stays open). `scan` is kept current.
+  bool cap_parts_resting_on_solids(Crossing_scan<PM>& scan)
+  {
+    Component_map component = get(CGAL::dynamic_face_property_t<std::size_t>(), pm_);
+    const std::vector<Shell<PM>> shells = shells_of(component);
+    if (shells.size() < 2) return false;
+    std::vector<signed char> solid_shell(shells.size(), 0);
+    CGAL::Bbox_3 solids_box;
+    bool any_solid = false, any_open = false;
+    for (std::size_t c = 0; c < shells.size(); ++c) {
+      if (!shells[c].closed) any_open = true;
+      else if (!shell_is_flat(pm_, vpm_, shells[c])) {
+        solid_shell[c] = 1;
+        solids_box += shells[c].box;
+        any_solid = true;
+      }
+    }
+    if (!any_solid || !any_open) return false;
+    // the parts in a crossing are the solidification's
+    std::vector<unsigned char> crossing(shells.size(), 0);
+    for (const Pair& p : scan.crossing) crossing[get(component, p.first)] = crossing[get(component, p.second)] = 1;
+    std::map<std::size_t, std::vector<std::array<vertex_descriptor, 3>>> open_caps, caps;
+    for (std::size_t c = 0; c < shells.size(); ++c) {
+      if (shells[c].closed || crossing[c]) continue;
+      const CGAL::Bbox_3& b = shells[c].box;
+      const double grow = settings_.rim_resting_share *
+                          std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) +
+                                    CGAL::square(b.zmax() - b.zmin()));
+      const CGAL::Bbox_3 reach(b.xmin() - grow, b.ymin() - grow, b.zmin() - grow, b.xmax() + grow,
+                               b.ymax() + grow, b.zmax() + grow);
+      if (!CGAL::do_overlap(reach, solids_box) || shell_is_flat(pm_, vpm_, shells[c])) continue;
+      std::vector<std::array<vertex_descriptor, 3>> cap;
+      if (caps_closing(shells[c], cap) != no_cap) open_caps.emplace(c, std::move(cap));
+    }
+    if (open_caps.empty()) return false;
+    cap_parts_stuck_into_solids(shells, solid_shell, open_caps, caps, settings_.rim_resting_share);
+    if (caps.empty()) return false;
+    // Liepa's triangulation of each loop, in the mesh; the faces of each part
+    std::map<std::size_t, std::vector<face_descriptor>> added;
+    std::map<face_descriptor, std::size_t> part_of;
+    for (const auto& cap : caps) {
+      std::vector<halfedge_descriptor> loops;
+      std::set<halfedge_descriptor> walked;
+      for (face_descriptor f : shells[cap.first].faces)
+        for (halfedge_descriptor g : CGAL::halfedges_around_face(halfedge(f, pm_), pm_)) {
+          const halfedge_descriptor o = opposite(g, pm_);
+          if (!is_border(o, pm_) || walked.count(o)) continue;
+          loops.push_back(o);
+          for (halfedge_descriptor w : CGAL::halfedges_around_face(o, pm_)) walked.insert(w);
+        }
+      std::vector<face_descriptor>& mine = added[cap.first];
+      bool whole = true;
+      for (halfedge_descriptor h : loops) whole = whole && triangulate_hole_checked(pm_, h, vpm_, true, mine);
+      if (!whole) {
+        for (face_descriptor f : mine) CGAL::Euler::remove_face(halfedge(f, pm_), pm_);
+        added.erase(cap.first);
+        continue;
+      }
+      for (face_descriptor f : mine) part_of.emplace(f, cap.first);
+    }
+    // A cap in a crossing goes again, with its part's other caps (the
+    // pairs without a cap are the mesh's own: their faces did not change).
+    // Each round takes back a part or ends; after the third all go.
+    for (int round = 0; !added.empty(); ++round) {
+      Crossing_scan<PM> after = scan_crossings(pm_, vpm_);
+      std::set<std::size_t> back;
+      if (after.status == Status::ok)
+        for (const Pair& p : after.crossing)
+          for (face_descriptor f : {p.first, p.second}) {
+            const auto it = part_of.find(f);
+            if (it != part_of.end()) back.insert(it->second);
+          }
+      if (after.status == Status::ok && back.empty()) {
+        scan = std::move(after);
+        break;
+      }
+      if (after.status != Status::ok || round == 2)
+        for (const auto& a : added) back.insert(a.first);
+      for (std::size_t c : back) {
+        for (face_descriptor f : added[c]) {
+          part_of.erase(f);
+          CGAL::Euler::remove_face(halfedge(f, pm_), pm_);
+        }
+        added.erase(c);
+      }
+    }
+    for (const auto& a : added) {
+      ++counts.open_parts_capped;
+      counts.cap_faces_added += a.second.size();
+    }
+    return !added.empty();
   }
 
   // ---------------------------------------------------------- solidify
@@ -483,7 +597,8 @@ private:
     // An open part stuck into a body (a dome, a button, a leg of a model
     // whose parts were modelled as open surfaces): its border lies inside
     // the body, so its cap does too and the union does not show it.
-    if (!sheet_caps.empty()) cap_parts_stuck_into_solids(shells, solid_shell, sheet_caps, caps);
+    if (!sheet_caps.empty())
+      cap_parts_stuck_into_solids(shells, solid_shell, sheet_caps, caps, settings_.rim_outside_share);
     bool any = false;
     for (const Pair& p : scan.crossing) {
       const std::size_t a = get(component, p.first), b = get(component, p.second);
