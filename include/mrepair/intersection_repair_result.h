@@ -46,6 +46,10 @@ struct Intersection_repair_result
   /// its rim on or near the body's surface), closed by caps of their loops
   std::size_t open_parts_capped = 0;
   std::size_t cap_faces_added = 0;        ///< those caps' faces
+  /// open shells crossing the solid that bound nothing (sheets): cut where
+  /// they enter it, their part inside absorbed (their faces are counted in
+  /// the solid's faces removed and added)
+  std::size_t sheets_cut = 0;
   std::size_t arrangement_faces = 0;      ///< faces of the (last) exact arrangement
   /// why the solidification left the closed shells as they were (empty: it did
   /// not, or did not run): `arrangement_too_large`, `arrangement_failed`,
@@ -85,6 +89,7 @@ struct Intersection_repair_result
     f("solid_faces_added", &R::solid_faces_added);
     f("open_parts_capped", &R::open_parts_capped);
     f("cap_faces_added", &R::cap_faces_added);
+    f("sheets_cut", &R::sheets_cut);
     f("arrangement_faces", &R::arrangement_faces);
     f("crossing_pairs_after", &R::crossing_pairs_after);
     f("touching_pairs_after", &R::touching_pairs_after);

@@ -129,6 +129,7 @@ Intersection_repair_result resolve_intersections(TriangleMesh& tm,
   r.solid_faces_added = c.solid_faces_added;
   r.open_parts_capped = c.open_parts_capped;
   r.cap_faces_added = c.cap_faces_added;
+  r.sheets_cut = c.sheets_cut;
   r.arrangement_faces = c.arrangement_faces;
   r.solidify_note = c.solidify_note;
   r.crossing_pairs_after = c.crossing_after;

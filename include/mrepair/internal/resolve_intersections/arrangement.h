@@ -43,6 +43,9 @@ struct Triangle_soup
 {
   std::vector<std::array<double, 3>> points;
   std::vector<std::array<std::size_t, 3>> triangles;
+  /// per triangle (or empty: none): 1 for a sheet's triangle, which bounds
+  /// no cell: it is cut by the arrangement but counts in no winding number
+  std::vector<unsigned char> sheet;
 };
 
 struct Arrangement_outcome
@@ -53,11 +56,17 @@ struct Arrangement_outcome
   std::size_t patches = 0;
   std::size_t rays = 0, rays_shot_again = 0;
   Triangle_soup solid;              ///< the kept pieces, outward
+  /// the sheets' pieces outside the solid (winding number 0, covered by no
+  /// piece of it), oriented as their triangles; their ends on the solid's
+  /// surface share its vertices
+  Triangle_soup sheets;
 };
 
 // Builds the arrangement of `soup` whose crossing triangle pairs are `pairs`
 // (indices into soup.triangles) and keeps the boundary of the cells of
-// nonzero winding number; no more than `max_pieces` pieces.
+// nonzero winding number; no more than `max_pieces` pieces. Sheet triangles
+// (`soup.sheet`) are cut too and their pieces outside the solid kept apart
+// (`sheets`): the part of an open surface inside the solid is absorbed.
 //
 // The exact arrangement (Epeck, three projected constrained triangulations)
 // costs about a minute of compiler time in every translation unit that
@@ -347,6 +356,7 @@ class Winding_number_solidifier
   std::vector<unsigned char> degenerate_;  // collinear or repeated corners
   std::vector<Tri> pieces_;                // the arrangement's faces
   std::vector<std::size_t> parent_;        // piece -> input triangle
+  std::vector<unsigned char> sheet_;       // input triangle -> of a sheet (empty: none)
   std::vector<Box> piece_box_;
   Box all_;
 
@@ -367,6 +377,7 @@ public:
 
 private:
   EK::Triangle_3 triangle(const Tri& t) const { return EK::Triangle_3(points_[t[0]], points_[t[1]], points_[t[2]]); }
+  bool sheet_piece(std::size_t f) const { return !sheet_.empty() && sheet_[parent_[f]]; }
 
   // ------------------------------------------------------------ step 1
   bool build(const Triangle_soup& soup, const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
@@ -385,6 +396,7 @@ private:
       for (const Tri& t : soup.triangles) input_.push_back({{merged[t[0]], merged[t[1]], merged[t[2]]}});
     }
     const std::size_t T = input_.size();
+    if (soup.sheet.size() == T) sheet_ = soup.sheet;
     degenerate_.assign(T, 0);
     for (std::size_t t = 0; t < T; ++t) {
       const Tri& x = input_[t];
@@ -583,6 +595,7 @@ private:
     auto test = [&](std::uint32_t g) {
       if (degenerate || stamp[g] == ticket) return;
       stamp[g] = ticket;
+      if (sheet_piece(g)) return;  // bounds no cell
       const Box& gb = piece_box_[g];
       if (!gb.overlaps(footprint)) return;
       const Tri& y = pieces_[g];
@@ -652,7 +665,9 @@ private:
       for (std::size_t i = 0; i < uses.size();) {
         std::size_t j = i;
         while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b) ++j;
-        if (j - i == 2 && uses[i].forward != uses[i + 1].forward) patches.unite(uses[i].face, uses[i + 1].face);
+        if (j - i == 2 && uses[i].forward != uses[i + 1].forward &&
+            sheet_piece(uses[i].face) == sheet_piece(uses[i + 1].face))
+          patches.unite(uses[i].face, uses[i + 1].face);
         i = j;
       }
     }
@@ -703,6 +718,13 @@ private:
         out.reason = "arrangement_failed: no ray without a degenerate hit";
         return;
       }
+      if (sheet_piece(patch.front())) {
+        // outside the solid and on none of its pieces (one on its surface
+        // lies within rounding of the solid's face: nothing is lost)
+        if (rep.covering == 0 && rep.winding_front == 0)
+          for (std::size_t f : patch) keep[f] = 1;
+        continue;
+      }
       auto decide = [&](std::size_t f, const Ray_answer& a, bool covered) {
         if (covered && a.owner != parent_[f]) return;  // a coplanar copy of a lower triangle stands for it
         const int front = a.winding_front, back = a.winding_front + a.jump;
@@ -730,8 +752,27 @@ private:
     std::vector<std::size_t> renumber(points_.size(), std::size_t(-1));
     std::vector<EPoint> kept_points;
     std::vector<Tri> kept;
+    {
+      std::vector<std::size_t> sheet_number(points_.size(), std::size_t(-1));
+      std::vector<EPoint> sheet_points;
+      for (std::size_t f = 0; f < F; ++f) {
+        if (!keep[f] || !sheet_piece(f)) continue;
+        Tri t = pieces_[f];
+        for (std::size_t& v : t) {
+          if (sheet_number[v] == std::size_t(-1)) {
+            sheet_number[v] = sheet_points.size();
+            sheet_points.push_back(points_[v]);
+          }
+          v = sheet_number[v];
+        }
+        out.sheets.triangles.push_back(t);
+      }
+      for (const EPoint& p : sheet_points)
+        out.sheets.points.push_back({{CGAL::to_double(CGAL::exact(p.x())), CGAL::to_double(CGAL::exact(p.y())),
+                                      CGAL::to_double(CGAL::exact(p.z()))}});
+    }
     for (std::size_t f = 0; f < F; ++f) {
-      if (!keep[f]) continue;
+      if (!keep[f] || sheet_piece(f)) continue;
       Tri t = pieces_[f];
       if (flip[f]) std::swap(t[1], t[2]);
       for (std::size_t& v : t) {

@@ -82,6 +82,7 @@ struct Resolver_counts
   std::size_t shells_solidified = 0;   // closed shells replaced by the winding-number solid
   std::size_t solid_faces_removed = 0, solid_faces_added = 0;
   std::size_t open_parts_capped = 0, cap_faces_added = 0;  // parts resting on a solid
+  std::size_t sheets_cut = 0;          // open shells cut where they enter the solid
   std::size_t arrangement_faces = 0;   // of the last arrangement
   std::size_t arrangement_passes = 0;
   std::string solidify_note;           // why the solidification left the shells as they were
@@ -104,6 +105,7 @@ class Intersection_resolver
   VertexPointMap vpm_;
   Resolver_settings settings_;
   bool rounding_left_crossings_ = false;  // the solid was kept with crossings rounding made
+  bool sheets_taken_ = false;             // the last solidification cut open sheets
 
 public:
   Resolver_counts counts;
@@ -126,7 +128,11 @@ public:
       PM given;
       const Resolver_counts counts_given = counts;
       CGAL::copy_face_graph(pm_, given, CGAL::parameters::vertex_point_map(vpm_));
-      if (solidify_closed_shells(scan)) {
+      // with the open sheets that cross the solid cut at it; without them
+      // when that fails
+      bool solid = solidify_closed_shells(scan, true);
+      if (!solid && sheets_taken_) solid = solidify_closed_shells(scan, false);
+      if (solid) {
         const Status with_solid = finish(scan_crossings(pm_, vpm_), visitor);
         // a solid without crossings of its own stays (what is left crosses
         // open shells, which the repair without it would cut into)
@@ -543,8 +549,9 @@ private:
   // face, the arrangement runs again on it (at most arrangement_passes). A
   // result that is not a valid closed triangle mesh without crossing leaves
   // the shells as they were (`solidify_note` says why).
-  bool solidify_closed_shells(const Crossing_scan<PM>& scan)
+  bool solidify_closed_shells(const Crossing_scan<PM>& scan, bool with_sheets)
   {
+    sheets_taken_ = false;
     using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
     using Work_mesh = CGAL::Surface_mesh<Epick::Point_3>;
     Component_map component = get(CGAL::dynamic_face_property_t<std::size_t>(), pm_);
@@ -607,6 +614,18 @@ private:
     for (const auto& cd : cap_crossings)
       if (bounds_a_solid(cd.first) && bounds_a_solid(cd.second)) chosen[cd.first] = chosen[cd.second] = 1, any = true;
     if (!any) return false;
+    // Open shells that cross the solid and bound nothing (a ribbon, a strap
+    // modelled as a sheet): the arrangement cuts them where they enter it
+    // and keeps what lies outside, attached at the solid's surface; what lies
+    // inside is absorbed, as a part inside a solid is. Sheets stay sheets.
+    std::vector<unsigned char> sheet(shells.size(), 0);
+    if (with_sheets)
+      for (const Pair& p : scan.crossing) {
+        const std::size_t a = get(component, p.first), b = get(component, p.second);
+        for (const auto& ab : {std::make_pair(a, b), std::make_pair(b, a)})
+          if (chosen[ab.first] && !chosen[ab.second] && !shells[ab.second].closed && solid_shell[ab.second] == 0)
+            sheet[ab.second] = 1;
+      }
     // the chosen shells as a soup, and their crossing pairs by soup index
     Triangle_soup soup;
     std::vector<face_descriptor> doomed;
@@ -614,7 +633,7 @@ private:
     {
       std::map<vertex_descriptor, std::size_t> vertex_index;
       for (std::size_t c = 0; c < shells.size(); ++c) {
-        if (!chosen[c]) continue;
+        if (!chosen[c] && !sheet[c]) continue;
         for (face_descriptor f : shells[c].faces) {
           std::array<std::size_t, 3> t;
           int k = 0;
@@ -627,15 +646,24 @@ private:
           if (k != 3) return false;
           index_of.emplace(f, soup.triangles.size());
           soup.triangles.push_back(t);
+          soup.sheet.push_back(sheet[c]);
           doomed.push_back(f);
+        }
+        if (sheet[c]) {
+          ++counts.sheets_cut;
+          sheets_taken_ = true;
+          continue;
         }
         auto cap = caps.find(c);
         if (cap != caps.end())
-          for (const auto& t : cap->second)
+          for (const auto& t : cap->second) {
             soup.triangles.push_back({{vertex_index.at(t[0]), vertex_index.at(t[1]), vertex_index.at(t[2])}});
+            soup.sheet.push_back(0);
+          }
         ++counts.shells_solidified;
       }
     }
+    if (!sheets_taken_) soup.sheet.clear();
     std::vector<std::pair<std::size_t, std::size_t>> pairs;
     bool capped = false;
     for (std::size_t c = 0; c < shells.size(); ++c) capped = capped || (chosen[c] && caps.count(c));
@@ -646,14 +674,14 @@ private:
       std::vector<Epick::Point_3> points;
       for (const auto& p : soup.points) points.emplace_back(p[0], p[1], p[2]);
       if (!CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(soup.triangles)) {
-        counts.shells_solidified = 0;
+        counts.shells_solidified = counts.sheets_cut = 0;
         counts.solidify_note = "caps_not_closing: the capped shells are not a polygon mesh";
         return false;
       }
       CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, soup.triangles, capped_mesh);
       auto capped_scan = scan_crossings(capped_mesh, get(CGAL::vertex_point, capped_mesh));
       if (capped_scan.status != Status::ok || capped_scan.crossing.empty()) {
-        counts.shells_solidified = 0;
+        counts.shells_solidified = counts.sheets_cut = 0;
         return false;
       }
       for (const auto& p : capped_scan.crossing)
@@ -674,12 +702,14 @@ private:
     // repair that follows takes what is left.
     const std::size_t crossing_in = pairs.size();
     Work_mesh solid, best;
+    Triangle_soup sheets_outside;  // of the first pass (the next ones arrange the solid alone)
     std::size_t best_left = crossing_in;
     bool done = false;
     for (std::size_t pass = 0; pass < settings_.arrangement_passes && !done; ++pass) {
       ++counts.arrangement_passes;
       Arrangement_outcome o = arrange_winding_number_solid(soup, pairs, max_faces);
       counts.arrangement_faces = o.pieces;
+      if (pass == 0) sheets_outside = std::move(o.sheets);
       if (!o.ok) {
         counts.solidify_note = o.reason;
         break;
@@ -751,8 +781,31 @@ private:
       done = true;
     }
     if (!done) {
-      counts.shells_solidified = 0;
+      counts.shells_solidified = counts.sheets_cut = 0;
       return false;
+    }
+    // the sheets' pieces outside the solid: a mesh of their own (where a
+    // sheet crossed itself its pieces meet in more than two: split there)
+    Work_mesh sheets_mesh;
+    if (sheets_taken_ && !sheets_outside.triangles.empty()) {
+      std::vector<Epick::Point_3> points;
+      for (const auto& p : sheets_outside.points) points.emplace_back(p[0], p[1], p[2]);
+      std::vector<std::array<std::size_t, 3>> triangles;
+      for (const auto& t : sheets_outside.triangles)  // rounding can flatten a sliver
+        if (!CGAL::collinear(points[t[0]], points[t[1]], points[t[2]])) triangles.push_back(t);
+      if (!CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(triangles))
+        CGAL::Polygon_mesh_processing::orient_polygon_soup(points, triangles);
+      if (!CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(triangles)) {
+        counts.shells_solidified = counts.sheets_cut = 0;
+        counts.solidify_note = "sheets_not_a_mesh: the sheets' pieces outside the solid";
+        return false;
+      }
+      CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, triangles, sheets_mesh);
+      if (!CGAL::is_valid_polygon_mesh(sheets_mesh)) {
+        counts.shells_solidified = counts.sheets_cut = 0;
+        counts.solidify_note = "sheets_not_a_mesh: the sheets' pieces outside the solid";
+        return false;
+      }
     }
     if (best_left == 0) counts.solidify_note.clear();
     {
@@ -761,6 +814,11 @@ private:
     }
     counts.solid_faces_added += internal::face_count(solid);
     CGAL::copy_face_graph(solid, pm_, CGAL::parameters::default_values(), CGAL::parameters::vertex_point_map(vpm_));
+    if (!CGAL::is_empty(sheets_mesh)) {
+      counts.solid_faces_added += internal::face_count(sheets_mesh);
+      CGAL::copy_face_graph(sheets_mesh, pm_, CGAL::parameters::default_values(),
+                            CGAL::parameters::vertex_point_map(vpm_));
+    }
     return true;
   }
 
