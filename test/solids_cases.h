@@ -776,9 +776,11 @@ TYPED_TEST(Solids, cavity_inside_crossing_bodies_is_kept)
 }
 
 // 14. A sheet (an open square) through a closed box: the sheet encloses
-// nothing and is left as it is; the box takes part in no solidification
-// (it crosses only the sheet); the crossings are reported as such.
-TYPED_TEST(Solids, sheet_through_a_box_is_left_alone)
+// nothing, so it stays a sheet, but the arrangement cuts it where it enters
+// the box: the part inside is absorbed (its points are inside the box), the
+// parts outside stay, attached at the box's surface (touching it, not
+// crossing it). The box keeps its volume.
+TYPED_TEST(Solids, sheet_through_a_box_is_cut_at_the_box)
 {
   using Mesh = typename TypeParam::Mesh;
   Soup s = box(0, 1, 0, 1, 0, 1);
@@ -788,13 +790,24 @@ TYPED_TEST(Solids, sheet_through_a_box_is_left_alone)
   s.polygons.push_back({base, base + 1, base + 2});
   s.polygons.push_back({base, base + 2, base + 3});
   Mesh m = to_mesh<Mesh>(s);
+  double sheet_area = 0;
+  for (std::size_t t = 12; t < 14; ++t) {
+    const auto& q = s.polygons[t];
+    sheet_area += std::sqrt(CGAL::to_double(CGAL::squared_area(s.points[q[0]], s.points[q[1]], s.points[q[2]])));
+  }
   const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
   EXPECT_GT(r.crossing_pairs_before, 0u);
-  EXPECT_EQ(r.shells_solidified, 0u) << describe(r);
-  EXPECT_EQ(face_count(m), 14u);
-  EXPECT_EQ(r.crossing_pairs_after, r.crossing_pairs_before);
+  EXPECT_EQ(r.shells_solidified, 1u) << describe(r);
+  EXPECT_EQ(r.sheets_cut, 1u) << describe(r);
+  EXPECT_EQ(r.crossing_pairs_after, 0u) << describe(r);
+  EXPECT_TRUE(r.intersection_free);
   EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
   expect_no_point_lost(m, s.points);
+  // the box (area 6) and the sheet less its square inside the box
+  const double area = PMP::area(m);
+  EXPECT_GT(area, 6. + sheet_area - 1.02) << area;
+  EXPECT_LT(area, 6. + sheet_area - 0.98) << area;
+  EXPECT_EQ(face_count(m), r.solid_faces_added) << describe(r);
 }
 
 // A print model cut in two whose halves sit a little apart (Slic3r's Spider:

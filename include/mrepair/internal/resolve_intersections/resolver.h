@@ -606,26 +606,28 @@ private:
     // the body, so its cap does too and the union does not show it.
     if (!sheet_caps.empty())
       cap_parts_stuck_into_solids(shells, solid_shell, sheet_caps, caps, settings_.rim_outside_share);
+    // Open shells that cross a solid and bound nothing (a ribbon, a strap,
+    // a fin modelled as a sheet): the arrangement cuts them where they enter
+    // it and keeps what lies outside, attached at the solid's surface; what
+    // lies inside is absorbed, as a part inside a solid is. Sheets stay
+    // sheets.
+    std::vector<unsigned char> sheet(shells.size(), 0);
     bool any = false;
     for (const Pair& p : scan.crossing) {
       const std::size_t a = get(component, p.first), b = get(component, p.second);
-      if (bounds_a_solid(a) && bounds_a_solid(b)) chosen[a] = chosen[b] = 1, any = true;
+      const bool sa = bounds_a_solid(a), sb = bounds_a_solid(b);
+      if (sa && sb) chosen[a] = chosen[b] = 1, any = true;
+      else if (with_sheets && a != b && (sa || sb)) {
+        const std::size_t open = sa ? b : a;
+        if (shells[open].closed) continue;  // a flat closed shell bounds nothing either: left
+        chosen[sa ? a : b] = sheet[open] = 1;
+        any = true;
+      }
     }
     for (const auto& cd : cap_crossings)
       if (bounds_a_solid(cd.first) && bounds_a_solid(cd.second)) chosen[cd.first] = chosen[cd.second] = 1, any = true;
     if (!any) return false;
-    // Open shells that cross the solid and bound nothing (a ribbon, a strap
-    // modelled as a sheet): the arrangement cuts them where they enter it
-    // and keeps what lies outside, attached at the solid's surface; what lies
-    // inside is absorbed, as a part inside a solid is. Sheets stay sheets.
-    std::vector<unsigned char> sheet(shells.size(), 0);
-    if (with_sheets)
-      for (const Pair& p : scan.crossing) {
-        const std::size_t a = get(component, p.first), b = get(component, p.second);
-        for (const auto& ab : {std::make_pair(a, b), std::make_pair(b, a)})
-          if (chosen[ab.first] && !chosen[ab.second] && !shells[ab.second].closed && solid_shell[ab.second] == 0)
-            sheet[ab.second] = 1;
-      }
+    for (std::size_t c = 0; c < shells.size(); ++c) sheet[c] = sheet[c] && !chosen[c];
     // the chosen shells as a soup, and their crossing pairs by soup index
     Triangle_soup soup;
     std::vector<face_descriptor> doomed;
