@@ -620,6 +620,76 @@ TYPED_TEST(Solids, button_on_a_part_stuck_into_the_body_is_capped_after_the_part
       3, 8.15, 8.15 + 2. / 3. * pi * 0.008);
 }
 
+// 7e. A button resting on a body without crossing it: an open dome whose
+// rim lies 0.02-0.04 above the body's top face (up to 7% of the rim's size;
+// the doorman's buttons lie up to 11% off their coat). Nothing crosses, so no
+// solid is made, but the dome is a part: its octagon gets Liepa's cap in
+// place (6 triangles) and both parts are closed; no point moves.
+TYPED_TEST(Solids, button_resting_just_off_a_body_is_capped_in_place)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup s = merged(box(0, 2, 0, 2, 0, 2), dome(1, 1, 2.03, 0.3, 0.01));
+  Mesh m = to_mesh<Mesh>(s);
+  const std::size_t faces_in = face_count(m);
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_EQ(r.crossing_pairs_before, 0u);
+  expect_resolved(m, r, true);
+  EXPECT_EQ(r.open_parts_capped, 1u) << describe(r);
+  EXPECT_EQ(r.cap_faces_added, 6u) << describe(r);
+  EXPECT_EQ(r.shells_solidified, 0u) << describe(r);
+  EXPECT_EQ(face_count(m), faces_in + 6);
+  EXPECT_EQ(components(m), 2u);
+  const double v = PMP::volume(m);
+  EXPECT_GT(v, 8.01);
+  EXPECT_LT(v, 8. + 2. / 3. * pi * 0.027);
+  expect_no_point_lost(m, s.points);
+}
+
+// 7f. What does not rest on a body stays open: the same dome 0.5 above the
+// body (its rim farther off than a fifth of its size), and a flat square
+// sheet 0.01 above it (flat: it bounds nothing however closed).
+TYPED_TEST(Solids, dome_above_a_body_and_a_flat_sheet_on_it_stay_open)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = merged(box(0, 2, 0, 2, 0, 2), dome(1, 1, 2.5, 0.3, 0.01));
+  const std::size_t base = s.points.size();
+  s.points.insert(s.points.end(), {Point(0.2, 0.2, 2.01), Point(0.6, 0.2, 2.01), Point(0.6, 0.6, 2.01),
+                                   Point(0.2, 0.6, 2.01)});
+  s.polygons.push_back({base, base + 1, base + 2});
+  s.polygons.push_back({base, base + 2, base + 3});
+  Mesh m = to_mesh<Mesh>(s);
+  const std::size_t faces_in = face_count(m);
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_EQ(r.open_parts_capped, 0u) << describe(r);
+  EXPECT_EQ(face_count(m), faces_in);
+  EXPECT_EQ(border_halfedges(m), 8u + 4u);
+  expect_sound_surface(m, false);
+}
+
+// 7g. A strap (an open strip) through two crossing boards: the boards become
+// one solid, the strap is cut where it enters it (its part inside is
+// absorbed, its ends outside stay, touching the solid's surface); nothing
+// crosses and no point is lost.
+TYPED_TEST(Solids, strap_through_crossing_boards_is_cut_at_their_union)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = merged(box(0, 3, 0, 1, 0, 0.2), box(1, 2, -1, 2, -0.1, 0.3));
+  const std::size_t base = s.points.size();
+  s.points.insert(s.points.end(), {Point(1.2, 0.5, -1), Point(1.8, 0.5, -1.1), Point(1.8, 0.52, 1.1),
+                                   Point(1.2, 0.48, 1)});
+  s.polygons.push_back({base, base + 1, base + 2});
+  s.polygons.push_back({base, base + 2, base + 3});
+  Mesh m = to_mesh<Mesh>(s);
+  const mrepair::Intersection_repair_result r = mrepair::resolve_intersections(m);
+  EXPECT_GT(r.crossing_pairs_before, 0u);
+  expect_resolved(m, r, false);
+  EXPECT_EQ(r.shells_solidified, 2u) << describe(r);
+  EXPECT_EQ(r.sheets_cut, 1u) << describe(r);
+  // the union (closed) and the strap's two ends (open)
+  EXPECT_EQ(components(m), 3u) << describe(r);
+  expect_no_point_lost(m, s.points);
+}
+
 // 8. Two tetrahedra glued on a doubled face (the face listed once for
 // each): the whole repair removes the inner wall and leaves the double
 // pyramid, 6 faces, closed.
