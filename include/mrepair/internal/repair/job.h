@@ -19,6 +19,7 @@
 #include <mrepair/internal/coordinate_range.h>
 #include <mrepair/internal/input_profile/classifier.h>
 #include <mrepair/internal/io/convert.h>
+#include <mrepair/internal/resolve_intersections/shells.h>
 #include <mrepair/internal/utility.h>
 #include <mrepair/parameters.h>
 #include <mrepair/repair_result.h>
@@ -29,6 +30,7 @@
 
 #include <CGAL/Polygon_mesh_processing/polygon_mesh_to_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
@@ -271,6 +273,31 @@ Repair_result run_repair_job(std::vector<Point>& points, std::vector<Polygon>& p
       const auto gap_np = MP::gap_bridge_first(get_or(np, internal_np::gap_bridge_first, true),
                                                np.visitor(std::ref(forward)));
       g = gap > 0. ? Stages::close_gaps(out, gap, gap_np) : Stages::close_gaps_automatic(out, gap_np);
+      // Without seams to read a tolerance from (fewer than 16 candidates),
+      // border vertices that coincide are still stitched: within 1e-6 x the
+      // diagonal, which moves no point farther than the reference tolerance
+      // (two cubes on one edge whose split corners coincide, CGAL's
+      // nm_cubes.off: each cube closes, the two touch along the edge)
+      // nm_cubes.off: each cube closes, the two touch along the edge). Taken
+      // back when it closes a shell around no volume: two coincident copies
+      // of a sheet stitched into a pillow that crosses itself.
+      if (!(gap > 0.) && g.status == Status::ok && g.tolerance_estimated && !(g.estimate.tolerance > 0.) &&
+          g.boundary_edges_before > 0) {
+        const auto vpm = get_const_property_map(CGAL::vertex_point, out);
+        const std::size_t empty_before = solid::count_empty_closed_shells(out, vpm);
+        PolygonMesh unstitched;
+        CGAL::copy_face_graph(out, unstitched);
+        Gap_closing_result stitched = Stages::close_gaps(out, 1e-6, MP::gap_relative_tolerance(true, gap_np));
+        if (succeeded(stitched.status) && solid::count_empty_closed_shells(out, vpm) <= empty_before) {
+          stitched.tolerance_estimated = true;
+          stitched.estimate = g.estimate;
+          g = stitched;
+        } else {
+          if constexpr (Is_surface_mesh<PolygonMesh>::value) out.clear_without_removing_property_maps();
+          else CGAL::clear(out);
+          CGAL::copy_face_graph(unstitched, out);
+        }
+      }
     }
     result.gaps_closed = true;
     result.gaps = g;

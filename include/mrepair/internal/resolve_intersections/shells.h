@@ -104,6 +104,24 @@ std::vector<Shell<PolygonMesh>> label_shells(const PolygonMesh& pm, VertexPointM
   return shells;
 }
 
+// The closed shells of `pm` that enclose no volume: |signed volume| at most
+// 1e-9 x the cube of their box's diagonal (a flat one, or a pillow of two
+// coincident copies of a surface stitched along their borders).
+template <typename PolygonMesh, typename VertexPointMap>
+std::size_t count_empty_closed_shells(const PolygonMesh& pm, VertexPointMap vpm)
+{
+  auto component = get(CGAL::dynamic_face_property_t<std::size_t>(), pm);
+  std::size_t n = 0;
+  for (const Shell<PolygonMesh>& s : label_shells(pm, vpm, component)) {
+    if (!s.closed) continue;
+    const CGAL::Bbox_3& b = s.box;
+    const double d = std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) +
+                               CGAL::square(b.zmax() - b.zmin()));
+    n += std::abs(s.volume) <= 1e-9 * d * d * d;
+  }
+  return n;
+}
+
 // Whether every vertex of `shell` lies in one plane (exact predicates on
 // the coordinates as doubles). A flat closed shell encloses no volume: every
 // point off it has winding number 0, so the winding-number solidification
