@@ -572,6 +572,20 @@ TYPED_TEST(Keeps_model, cad_profile_removes_only_open_debris_of_a_few_faces)
   EXPECT_EQ(part_count(m), 3u);
 }
 
+// `mrepair::repair_polygon_soup` of `s` into `m`, which must succeed and be a
+// valid closed mesh; the input's points compared with it.
+template <class Mesh>
+mrepair::Reference_comparison repair_to_closed_mesh(const Soup& s, Mesh& m)
+{
+  std::vector<Point> points = s.points;
+  std::vector<Polygon> polygons = s.polygons;
+  const mrepair::Repair_result r = mrepair::repair_polygon_soup(points, polygons, m);
+  EXPECT_TRUE(mrepair::succeeded(r.status)) << r.message;
+  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
+  EXPECT_TRUE(CGAL::is_closed(m));
+  return mrepair::compare_to_reference(s.points, m);
+}
+
 // A part inside another is absorbed by the union: its points end inside the
 // output, none is lost (compare_to_reference); a small part beside it stays.
 TYPED_TEST(Keeps_model, part_inside_another_is_absorbed_and_nothing_is_lost)
@@ -581,15 +595,10 @@ TYPED_TEST(Keeps_model, part_inside_another_is_absorbed_and_nothing_is_lost)
   s = merged(s, translated(cube(1.0), 1.5, 1.5, 1.5));       // inside: absorbed
   s = merged(s, translated(icosphere(1, 0.3), 2, 2, 3.2));   // inside too
   s = merged(s, translated(cube(0.1), 10, 0, 0));            // beside: a part
-  const std::vector<Point> input = s.points;
   Mesh m;
-  const mrepair::Repair_result r = mrepair::repair_polygon_soup(s.points, s.polygons, m);
-  ASSERT_TRUE(mrepair::succeeded(r.status)) << r.message;
-  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
-  EXPECT_TRUE(CGAL::is_closed(m));
-  const mrepair::Reference_comparison c = mrepair::compare_to_reference(input, m);
+  const mrepair::Reference_comparison c = repair_to_closed_mesh(s, m);
   EXPECT_EQ(c.status, Status::ok);
-  EXPECT_EQ(c.vertices, input.size());
+  EXPECT_EQ(c.vertices, s.points.size());
   EXPECT_EQ(c.vertices_lost, 0u);
   EXPECT_GE(c.vertices_inside, 8u);
   EXPECT_LE(c.max_distance, 1.5 + 1e-9);
@@ -639,15 +648,10 @@ TYPED_TEST(Keeps_model, cubes_on_one_split_edge_are_stitched_closed)
   };
   Soup s = merged(cube_with_split_edge(0, 0, 1, 1), cube_with_split_edge(1, 1, 1, 1));
   ASSERT_EQ(s.polygons.size(), 28u);
-  const std::vector<Point> input = s.points;
   Mesh m;
-  const mrepair::Repair_result r = mrepair::repair_polygon_soup(s.points, s.polygons, m);
-  ASSERT_TRUE(mrepair::succeeded(r.status)) << r.message;
-  EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
-  EXPECT_TRUE(CGAL::is_closed(m));
+  const mrepair::Reference_comparison c = repair_to_closed_mesh(s, m);
   EXPECT_EQ(face_count(m), 28u);
   EXPECT_NEAR(CGAL::Polygon_mesh_processing::volume(m), 2.0, 1e-12);
-  const mrepair::Reference_comparison c = mrepair::compare_to_reference(input, m);
   EXPECT_EQ(c.vertices_lost, 0u);
   EXPECT_LE(c.max_distance, 1e-12);
 }
