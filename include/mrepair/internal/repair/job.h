@@ -277,7 +277,6 @@ Repair_result run_repair_job(std::vector<Point>& points, std::vector<Polygon>& p
       // border vertices that coincide are still stitched: within 1e-6 x the
       // diagonal, which moves no point farther than the reference tolerance
       // (two cubes on one edge whose split corners coincide, CGAL's
-      // nm_cubes.off: each cube closes, the two touch along the edge)
       // nm_cubes.off: each cube closes, the two touch along the edge). Taken
       // back when it closes a shell around no volume: two coincident copies
       // of a sheet stitched into a pillow that crosses itself.
