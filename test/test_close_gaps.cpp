@@ -1,6 +1,7 @@
 // Copyright (c) 2026 mrepair contributors. SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of close_gaps() and Gap_closing_sequence (issue 4).
 #include <mrepair/close_gaps.h>
+#include <mrepair/compare_to_reference.h>
 #include <mrepair/io.h>
 
 #include "fixtures.h"
@@ -234,6 +235,50 @@ TYPED_TEST(Close_gaps, t_junction_seam_closes_without_t_junctions)
   EXPECT_EQ(face_count(m), 200u + 400u + 10u);
   EXPECT_EQ(vertices(m).size(), 121u + 231u - 11u);
   EXPECT_EQ(seam_border_edges(m, 0.95, 1.06), 0u);
+}
+
+// gap_keep_input_points (what repair() uses) on a crack along a crease: a
+// sheet in z = 0 (11 vertices on its edge x = 1) and an upright one in
+// x = 1.004 whose lowest row, 0.004 up, has 21. Without the parameter the 10
+// vertex-edge contractions move each T-junction vertex halfway to its edge,
+// 0.003 off the surface. With it each leaves its vertex in place and bends
+// the edge to it. The 11 corner pairs lose their points either way: merged
+// at either end, the other end's point is 0.004 off the faces (a crease),
+// so they stay at the λ point.
+TYPED_TEST(Close_gaps, keep_input_points_bends_edges_to_t_junction_vertices)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s;
+  add_patch(s, 0.0, 1.0, 10, 1.0, 10);  // z = 0, 11 vertices on x = 1
+  // the upright sheet: x = 1.004, z in [0.004, 1], 21 vertices on its seam row
+  const std::size_t base = s.points.size();
+  for (std::size_t j = 0; j <= 10; ++j)
+    for (std::size_t i = 0; i <= 20; ++i) s.points.emplace_back(1.004, 0.05 * double(i), 0.004 + 0.0996 * double(j));
+  auto id = [&](std::size_t i, std::size_t j) { return base + j * 21 + i; };
+  for (std::size_t j = 0; j < 10; ++j)
+    for (std::size_t i = 0; i < 20; ++i) {
+      s.polygons.push_back({id(i, j), id(i + 1, j + 1), id(i + 1, j)});  // facing -x: one
+      s.polygons.push_back({id(i, j), id(i, j + 1), id(i + 1, j + 1)});  // orientation with z = 0
+    }
+  const std::vector<Point> input = s.points;
+  auto lost_after = [&](bool keep, mrepair::Gap_closing_result& r) {
+    Mesh m = to_mesh<Mesh>(s);
+    r = mrepair::close_gaps(m, 0.02, MP::gap_keep_input_points(keep));
+    EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
+    EXPECT_EQ(border_loops(m), 1u);
+    return mrepair::compare_to_reference(input, m).vertices_lost;
+  };
+  mrepair::Gap_closing_result plain, kept;
+  const std::size_t lost_plain = lost_after(false, plain);
+  const std::size_t lost_kept = lost_after(true, kept);
+  ASSERT_EQ(plain.status, mrepair::Status::ok);
+  ASSERT_EQ(kept.status, mrepair::Status::ok);
+  EXPECT_EQ(kept.vertex_vertex, plain.vertex_vertex);
+  EXPECT_EQ(kept.vertex_edge, plain.vertex_edge);
+  EXPECT_EQ(kept.vertex_edge, 10u);
+  EXPECT_EQ(lost_plain, 32u);  // 22 corners, 10 T-junction vertices
+  EXPECT_EQ(lost_kept, 22u);
+  EXPECT_EQ(kept.alternative_placements, 10u);
 }
 
 TYPED_TEST(Close_gaps, crack_in_a_plane_closes)

@@ -63,6 +63,13 @@ namespace mrepair {
 ///     of at most that many edges that are narrower than tolerance / 2 (twice
 ///     their area over their perimeter): cracks whose contractions all flip a
 ///     sliver face; nothing moves (0: no bridging)
+///   - `gap_keep_input_points(bool)` (false; `repair()` sets it): a contraction
+///     takes the placement that leaves the input positions of the vertices it
+///     moves or removes on its new faces (within 1e-6 x the bounding-box
+///     diagonal) before the λ point: a vertex-edge contraction bends the edge
+///     to the vertex, a vertex-vertex one keeps the end whose partner stays on
+///     the merged surface (a crack across a flat side). The λ point when no
+///     candidate does (the rims of a crack along a crease)
 ///   - `gap_bridge_first(bool)` (false; `repair()` sets it): before any
 ///     contraction, join the two sides of a crack whose border edges face
 ///     each other with a strip: a border edge a-b whose ends have, as mutual

@@ -153,7 +153,12 @@ public:
   ///   only boundary vertices of the region, and edges with both ends in it, are paired;
   ///   a vertex is in a face region when one of its faces is selected; default all),
   ///   `gap_fingerprint_input(bool)` (false: hash the input, O(size), so that `save()`
-  ///   can write a file that `replay()` checks against its mesh).
+  ///   can write a file that `replay()` checks against its mesh),
+  ///   `gap_keep_input_points(bool)` (false: the λ point first; true: a placement
+  ///   that leaves the input positions of the vertices a contraction moves or
+  ///   removes within 1e-6 x the bounding-box diagonal of its new faces is
+  ///   taken before it, so the reference comparison loses none of them. A
+  ///   file saved with it replays only with it: the file does not record it).
   /// \pre `CGAL::is_valid_polygon_mesh(tm)` (checked in debug builds only: the check costs
   ///   more than the closing). Bad data (no face, NaN/infinite coordinate, a non-triangle face,
   ///   bad parameters) sets `status()` and makes every step a no-op.
@@ -173,6 +178,7 @@ public:
     const double lambda = internal::get_or(np, inp::gap_lambda, 0.5);
     const bool relative = internal::get_or(np, inp::gap_relative_tolerance, false);
     const double snap = internal::get_or(np, inp::gap_snap_distance, -1.0);
+    closer_.keep_input_points(internal::get_or(np, inp::gap_keep_input_points, false));
     file_.lambda = lambda;
     file_.snap = snap;
     if (!std::isfinite(max_distance) || max_distance < 0 || !(lambda >= 0 && lambda <= 1) ||

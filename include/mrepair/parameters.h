@@ -164,6 +164,7 @@ MREPAIR_ADD_NAMED_PARAMETER(gap_face_selection)         // face property map of 
 MREPAIR_ADD_NAMED_PARAMETER(gap_split_pinched_vertices) // bool: close_gaps makes the output manifold
 MREPAIR_ADD_NAMED_PARAMETER(gap_max_operations)         // std::size_t cap on contractions
 MREPAIR_ADD_NAMED_PARAMETER(gap_fingerprint_input)      // bool: hash the input so that save() works
+MREPAIR_ADD_NAMED_PARAMETER(gap_keep_input_points)      // bool: placements that keep input points on the surface first (false)
 // close_gaps.h
 MREPAIR_ADD_NAMED_PARAMETER(gap_bridge_max_edges)  // std::size_t: narrow loops bridged at the end (400; 0: none)
 MREPAIR_ADD_NAMED_PARAMETER(gap_bridge_first)      // bool: join facing crack rims by strips before contracting (false)

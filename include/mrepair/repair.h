@@ -111,6 +111,9 @@ struct Repair_stages
 ///   - `gap_bridge_first` (bool, default true here, false in `close_gaps()`):
 ///     the facing rims of a crack are joined by a strip of triangles before
 ///     the contractions, so that their vertices keep their input positions
+///   - `gap_keep_input_points` (bool, default true here, false in `close_gaps()`):
+///     each contraction takes, where it can, the placement that leaves the
+///     input positions of its vertices on the surface (close_gaps.h)
 ///   - `merge_epsilon` (double, default 0): soup points closer than this are merged
 ///   - `spike_angle` (degrees, default 100), `max_hole_vertices` (default: the
 ///     profile's, 100 for a scan and 500 for cad; the inspections count

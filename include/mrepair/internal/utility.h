@@ -98,6 +98,31 @@ inline double angle(const Vec3& a, const Vec3& b) { return std::atan2(norm(cross
 /// three doubles in a row (flat coordinate arrays) as a vector.
 inline Vec3 load_vec3(const double* p) { return {{p[0], p[1], p[2]}}; }
 
+/// squared distance from `p` to the triangle a-b-c (its closest point found by
+/// the Voronoi region of `p`: a corner, an edge, or the inside). A degenerate
+/// triangle gives the distance to its nearest edge.
+inline double squared_distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
+{
+  auto to_segment = [&](const Vec3& s, const Vec3& t) {
+    const Vec3 st = sub(t, s);
+    const double l2 = dot(st, st);
+    const double u = l2 > 0 ? std::clamp(dot(sub(p, s), st) / l2, 0., 1.) : 0.;
+    return squared_norm(sub(p, add(s, mul(st, u))));
+  };
+  const Vec3 n = triangle_normal(a, b, c);
+  const double n2 = dot(n, n);
+  if (n2 > 0) {
+    // inside the prism over the triangle: the distance to its plane
+    const bool inside = dot(cross(sub(b, a), sub(p, a)), n) >= 0 && dot(cross(sub(c, b), sub(p, b)), n) >= 0 &&
+                        dot(cross(sub(a, c), sub(p, c)), n) >= 0;
+    if (inside) {
+      const double h = dot(sub(p, a), n);
+      return h * h / n2;
+    }
+  }
+  return std::min({to_segment(a, b), to_segment(b, c), to_segment(c, a)});
+}
+
 /// any point type with x(), y(), z() (any kernel, exact ones included) in doubles.
 template <typename Point>
 Vec3 to_vec3(const Point& p)

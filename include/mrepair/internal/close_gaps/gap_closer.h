@@ -145,6 +145,14 @@ public:
     : tm_(tm), vpm_(vpm), idmap_(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm))
   {}
 
+  /// prefers the placements that leave the input position of every vertex
+  /// a contraction moves or removes within 1e-6 x the bounding-box diagonal
+  /// of the new faces (the reference tolerance of compare_to_reference.h):
+  /// a vertex-edge contraction that bends the edge to its vertex, a
+  /// vertex-vertex one that keeps the end whose partner's input position
+  /// stays on the merged surface. Set before start().
+  void keep_input_points(bool keep) { keep_points_ = keep; }
+
   /// refuses the input: every step is a no-op.
   void refuse(Status status, const std::string& message)
   {
@@ -197,6 +205,7 @@ public:
       return;
     }
     max_dist_ = relative ? max_distance * diag : max_distance;
+    keep_tolerance_ = 1e-6 * diag;
     snap_ = snap < 0 ? max_dist_ : snap;
 
     // boundary vertices and edges get stable ids
@@ -859,6 +868,26 @@ private:
   Outcome choose_placement(const Contraction& c, P3& to)
   {
     star(c.moved, tmp_);
+    if (keep_points_) {
+      // the candidate that leaves the input points nearest the new faces,
+      // when that is within the reference tolerance (keep_input_points)
+      int best = -1;
+      double best_gap = keep_tolerance_;
+      for (int k = 0; k < 3; ++k) {
+        if (check_placement(c, c.place[k]) != done) continue;
+        const double gap = distance_left_behind(c, c.place[k]);
+        if (gap <= best_gap) {
+          best = k;
+          best_gap = gap;
+          if (gap == 0) break;
+        }
+      }
+      if (best >= 0) {
+        to = c.place[best];
+        if (best > 0) ++alternative_placements_;
+        return done;
+      }
+    }
     Outcome first = done;
     for (int k = 0; k < 3; ++k) {
       if (k > 0 && c.place[k] == c.place[0]) continue;
@@ -893,6 +922,34 @@ private:
     const P3 origin = has_orig_[c.moved] ? p3(orig_[c.moved]) : pos(c.moved);
     if (sqdist(cand, origin) > max_dist_ * max_dist_) return displaced;
     return done;
+  }
+
+  // how far the input positions of the vertices the contraction removes or
+  // moves end from the faces around the moved vertex at `cand` (its star
+  // after the edit): 0 when they stay on the surface
+  double distance_left_behind(const Contraction& c, const P3& cand) const
+  {
+    auto input_position = [&](Id i) { return has_orig_[i] ? p3(orig_[i]) : pos(i); };
+    auto np = [&](Id i) { return i == c.moved ? cand : pos(i); };
+    std::array<P3, 2> kept;
+    std::size_t n = 0;
+    kept[n++] = input_position(c.moved);
+    if (c.op.removed_vertex != npos) kept[n++] = input_position(c.op.removed_vertex);
+    double worst = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      double nearest = std::numeric_limits<double>::infinity();
+      auto visit = [&](const Tri& t) {
+        nearest = std::min(nearest, squared_distance_to_triangle(kept[k], np(t[0]), np(t[1]), np(t[2])));
+      };
+      for (const Tri& t : c.op.added) visit(t);
+      for (const Tri& t : tmp_) {
+        bool removed = false;
+        for (const Tri& r : c.op.removed) removed = removed || same_face(t, r);
+        if (!removed) visit(t);
+      }
+      worst = std::max(worst, std::sqrt(nearest));
+    }
+    return worst;
   }
 
   // apply: edits the mesh (moving `moved` to `to`) and records the edit for
@@ -1121,6 +1178,8 @@ private:
   bool broken_ = false;            // an undo failed, or a bound was hit: no further step
   std::size_t max_ops_ = 0;        // contraction cap (see step())
   double max_dist_ = 0, lambda_ = 0.5, snap_ = 0;
+  bool keep_points_ = false;     // keep_input_points()
+  double keep_tolerance_ = 0;    // 1e-6 x the bounding-box diagonal
 
   std::vector<vertex_descriptor> vd_;  // stable id -> current descriptor
   std::size_t input_boundary_ = 0;     // ids below it: the input boundary vertices

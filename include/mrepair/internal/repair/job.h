@@ -270,8 +270,9 @@ Repair_result run_repair_job(std::vector<Point>& points, std::vector<Polygon>& p
       Phase_scope<Handle> phase(visitor, "close_gaps");
       // the facing rims of a crack are joined by a strip before the
       // contractions, which would move their vertices (close_gaps.h)
-      const auto gap_np = MP::gap_bridge_first(get_or(np, internal_np::gap_bridge_first, true),
-                                               np.visitor(std::ref(forward)));
+      const auto gap_np = MP::gap_keep_input_points(
+          get_or(np, internal_np::gap_keep_input_points, true),
+          MP::gap_bridge_first(get_or(np, internal_np::gap_bridge_first, true), np.visitor(std::ref(forward))));
       g = gap > 0. ? Stages::close_gaps(out, gap, gap_np) : Stages::close_gaps_automatic(out, gap_np);
       // Without seams to read a tolerance from (fewer than 16 candidates),
       // border vertices that coincide are still stitched: within 1e-6 x the
