@@ -452,6 +452,16 @@ private:
   // (its part stays open). `scan` is kept current.
   bool cap_parts_resting_on_solids(Crossing_scan<PM>& scan)
   {
+    // one part, or no border: nothing to cap (most meshes; the shells'
+    // labelling below costs more than these two looks)
+    if (scan.components < 2) return false;
+    bool any_border = false;
+    for (halfedge_descriptor h : halfedges(pm_))
+      if (is_border(h, pm_)) {
+        any_border = true;
+        break;
+      }
+    if (!any_border) return false;
     Component_map component = get(CGAL::dynamic_face_property_t<std::size_t>(), pm_);
     const std::vector<Shell<PM>> shells = shells_of(component);
     if (shells.size() < 2) return false;
