@@ -473,6 +473,31 @@ TYPED_TEST(Remesh, adaptive_beats_uniform_on_ellipsoid)
   EXPECT_LT(ha, 2 * 0.002);
 }
 
+// Issue 52: the relaxation after the last error-control round moved faces
+// over the tolerance again, and a Hausdorff distance is its worst face: on
+// this ellipsoid (lengths up to 0.05 x diagonal, as in the harness's sweep)
+// the mesh-to-input distance was 1.26 x the tolerance at 0.0003 x diagonal
+// and 1.32 x at 0.0008 (the 1M scan: 1.5 x). The faces still over it after
+// the last iteration are split at the input surface, and the min-angle pass
+// after that keeps the smallest angle.
+TYPED_TEST(Remesh, adaptive_faces_end_within_the_tolerance)
+{
+  using Mesh = typename TypeParam::Mesh;
+  Soup s = icosphere(5);
+  for (Point& p : s.points) p = Point(3 * p.x(), p.y(), 0.5 * p.z());
+  const Mesh input = to_mesh<Mesh>(s);
+  const double diag = 2. * std::sqrt(9. + 1. + 0.25);
+  for (double relative : {0.0003, 0.0008}) {
+    Mesh a = input;
+    const double tolerance = relative * diag;
+    auto r = mrepair::adaptive_remesh(a, tolerance, mrepair::parameters::remesh_max_edge_length(0.05 * diag));
+    ASSERT_EQ(r.status, mrepair::Status::ok) << r.message;
+    expect_valid(a);
+    EXPECT_LT(one_sided_distance(a, input), 1.02 * tolerance) << relative << " x diagonal";
+    EXPECT_GT(min_angle_deg(a), 29.) << relative << " x diagonal";
+  }
+}
+
 // remesh_to_face_count: within 2% of the count, adaptive (a smaller error
 // than uniform remeshing at about the same count) and its tolerance reported
 TYPED_TEST(Remesh, face_count_within_two_percent)

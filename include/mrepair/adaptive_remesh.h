@@ -177,7 +177,10 @@ Remeshing_result isotropic_remesh(const FaceRange& face_range, TriangleMesh& tm,
 /// \ingroup mrepair_remesh
 /// remeshes `tm` with a curvature-adaptive sizing field for approximation tolerance
 /// `tolerance` (thesis 3.7: L = sqrt(6 eps / kappa - 3 eps^2), kappa the largest
-/// absolute principal curvature of the input).
+/// absolute principal curvature of the input). The sizing is lowered where
+/// faces deviate more than `tolerance` from the input, and the faces still
+/// over it after the last iteration have their longest edge split at the
+/// input surface (doc/remeshing.md, items 3 and 7).
 /// \param np as `isotropic_remesh`, plus
 ///   - `mrepair::parameters::remesh_min_edge_length` (double, `tolerance`)
 ///   - `mrepair::parameters::remesh_max_edge_length` (double, bounding-box diagonal / 20)
@@ -210,9 +213,11 @@ Remeshing_result adaptive_remesh(const FaceRange& face_range, TriangleMesh& tm, 
 /// `adaptive_remesh`, at the tolerance whose field predicts `target_faces`
 /// once corrected by a 4-iteration pilot (which measures how far the count
 /// reached departs from the prediction on this shape); then the field is
-/// scaled by sqrt(faces / target) until the count is within 1.5%, 3
-/// iterations per correction. So a count gets about the accuracy the
-/// adaptive mode gives at that count. Splits plus
+/// scaled by sqrt(faces / (0.99 target)) until the count is within 1% of
+/// 0.99 x the target, 3 iterations per correction, and the faces left up to
+/// 1.01 x the target go to splits of the faces that deviate most from the
+/// input. So a count gets about the accuracy the adaptive mode gives at that
+/// count. Splits plus
 /// collapses are capped at 100 per input and per target face: a surface far
 /// thinner than the target length in one direction returns `partial` (valid
 /// mesh, count not reached). So does a count that needs edges longer than

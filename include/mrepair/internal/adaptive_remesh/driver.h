@@ -72,6 +72,23 @@ inline Remeshing_result refuse_remeshing(Remeshing_result res, Status s, const s
   return res;
 }
 
+/// after the last iteration: the faces still deviating more than `limit`
+/// have their longest edge split at the input surface, at most `max_splits`
+/// of them, worst first (Remesher::split_deviating_faces; a split may make an
+/// angle down to `deviation_split_min_deg`), then the min-angle pass raises
+/// the angles the splits made small again, up to the smallest angle before
+/// them (at least 30 degrees), guarded by the tolerance.
+constexpr double deviation_split_min_deg = 20.;
+
+template <typename Remesher>
+std::size_t split_faces_over(Remesher& R, double limit, std::size_t max_splits, bool project)
+{
+  const double min_before = R.min_angle_deg();
+  const std::size_t n = R.split_deviating_faces(limit, max_splits, deviation_split_min_deg);
+  if (n > 0) R.finish(project, std::max(30., min_before));
+  return n;
+}
+
 /// `iterations` of adaptive remeshing at tolerance `eps`, with the sizing
 /// lowered around the faces that deviate more than `limit` (to reach `goal`)
 /// after 2/5 and 7/10 of them (Remesher::refine_deviating_faces). With
@@ -88,7 +105,9 @@ Status run_with_error_control(Remesher& R, int iterations, bool project, double 
   st = R.run(second, project, vis, false);
   if (st != Status::ok) return st;
   R.refine_deviating_faces(limit, goal, lmin);
-  return R.run(iterations - first - second, project, vis, last_run);
+  st = R.run(iterations - first - second, project, vis, last_run);
+  if (st == Status::ok && last_run) split_faces_over(R, limit, std::numeric_limits<std::size_t>::max(), project);
+  return st;
 }
 
 /// adaptive remeshing to `value` faces with the adaptive mode's own schedule
@@ -102,9 +121,11 @@ Status run_with_error_control(Remesher& R, int iterations, bool project, double 
 ///  3. the tolerance that predicts the count over that factor, and the full
 ///     schedule with the adaptive mode's error control at it, continuing from
 ///     the pilot's mesh;
-///  4. the sizing scaled by the square root of the count reached over the
-///     target (3 iterations each) until within 1.5% (`outside`: faces not
-///     remeshed).
+///  4. the sizing scaled by the square root of the count reached over 0.99 x
+///     the target (3 iterations each) until the count is within 0.01 x the
+///     target of that aim (`outside`: faces not remeshed);
+///  5. the faces left up to 1.01 x the target spent on the faces that deviate
+///     most: their longest edges split at the input, worst first.
 /// Splits plus collapses are capped at 100 per input and per target face (a
 /// surface far thinner than the target length: `partial`).
 template <typename Remesher, typename TriangleMesh, typename VisitorHandle>
@@ -165,9 +186,12 @@ Status remesh_to_count(Remesher& R, const Remesh_options& o, double value, std::
   auto refit = [&] { return predicted * std::clamp(N / std::max(count(), 1.), 0.25, 4.); };
   Status st = schedule(N, 4, false);
   if (st == Status::ok) st = schedule(refit(), std::max(o.iterations, 4), true);
+  // the scaling aims 1% under the count: the last 1-2% go to the faces that
+  // deviate most (below)
+  const double aim = 0.99 * N;
   for (int round = 0; round < 8 && st == Status::ok; ++round) {
     const double F = count();
-    if (std::abs(F - N) <= 0.015 * N) break;
+    if (std::abs(F - aim) <= 0.01 * N) break;
     const double lmin = lmin_for(eps), low = std::min(lmin, floor_L);
     // Where the tolerance found (the smallest length unless one is given)
     // is above the maximum, the count has already taken the field past the
@@ -175,7 +199,7 @@ Status remesh_to_count(Remesher& R, const Remesh_options& o, double value, std::
     // percent short (the 1M scan at 1,146 faces: 1,174). Otherwise the
     // user's maximum bounds the field.
     const double high = lmin > lmax ? std::numeric_limits<double>::infinity() : lmax;
-    if (R.scale_sizing(std::sqrt(F / N), low, high) == 0) {
+    if (R.scale_sizing(std::sqrt(F / aim), low, high) == 0) {
       // the whole field sits at the maximum (F > N: the field was scaled
       // up), or at the floor: more rounds cannot move the count
       if (F > N && std::abs(F - N) > 0.02 * N) {
@@ -188,6 +212,13 @@ Status remesh_to_count(Remesher& R, const Remesh_options& o, double value, std::
       break;
     }
     st = R.run(3, o.project, vis, false);
+  }
+  if (st == Status::ok) {
+    // the room up to 1% over the count goes to the faces that deviate most,
+    // worst first (split_faces_over), so that the count's Hausdorff distance
+    // is not one face's
+    const double room = 1.01 * N - count();
+    if (room >= 2.) split_faces_over(R, 0., static_cast<std::size_t>(room / 2.), o.project);
   }
   if (st == Status::ok || (st == Status::partial && !res.message.empty())) R.finish(o.project);
   res.tolerance = eps;
