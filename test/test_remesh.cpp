@@ -771,7 +771,9 @@ bool read_armadillo(Surface_mesh& m, double& diag)
 // deviation was 2.2 x the tolerance at 0.004 x diagonal, at faces that were
 // all within it at the last error control (1.27 x at 0.008). The pass now
 // keeps its moves within the tolerance: 1.37 x and 1.14 x. The other way
-// (input to mesh: 1.85 x and 1.32 x, not controlled) is only held to 2 x.
+// (input to mesh) was 1.85 x and 1.32 x, not controlled; since stop 67 the
+// faces nearest to input points farther than the tolerance are split toward
+// them after the last iteration: 1.15 x and 1.08 x, held to 1.3 x and 1.2 x.
 // Surface_mesh only (the remesher is the same code on both types; the typed
 // tests cover Polyhedron_3).
 TEST(Remesh_armadillo, adaptive_min_angle_pass_stays_within_the_tolerance)
@@ -779,7 +781,8 @@ TEST(Remesh_armadillo, adaptive_min_angle_pass_stays_within_the_tolerance)
   Surface_mesh input;
   double diag = 0;
   if (!read_armadillo(input, diag)) GTEST_SKIP() << "armadillo.off not available";
-  for (const auto& [relative, bound] : {std::pair<double, double>{0.004, 1.6}, {0.008, 1.25}}) {
+  for (const auto& [relative, bound, back] :
+       {std::tuple<double, double, double>{0.004, 1.6, 1.3}, {0.008, 1.25, 1.2}}) {
     Surface_mesh m = input;
     const double tolerance = relative * diag;
     auto r = mrepair::adaptive_remesh<CGAL::Parallel_if_available_tag>(
@@ -790,7 +793,7 @@ TEST(Remesh_armadillo, adaptive_min_angle_pass_stays_within_the_tolerance)
     expect_valid(m);
     EXPECT_LT(face_count(m), 12000u);  // 52000 input faces
     EXPECT_LT(one_sided_distance(m, input), bound * tolerance) << "mesh to input at " << relative;
-    EXPECT_LT(one_sided_distance(input, m), 2. * tolerance) << "input to mesh at " << relative;
+    EXPECT_LT(one_sided_distance(input, m), back * tolerance) << "input to mesh at " << relative;
   }
 }
 

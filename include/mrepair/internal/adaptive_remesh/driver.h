@@ -84,7 +84,10 @@ template <typename Remesher>
 std::size_t split_faces_over(Remesher& R, double limit, std::size_t max_splits, bool project)
 {
   const double min_before = R.min_angle_deg();
-  const std::size_t n = R.split_deviating_faces(limit, max_splits, deviation_split_min_deg);
+  // first toward input points the mesh cut off (half the splits at most),
+  // then the faces over the limit, the new ones included
+  std::size_t n = R.split_toward_far_input_points(limit, max_splits / 2, deviation_split_min_deg);
+  n += R.split_deviating_faces(limit, max_splits - n, deviation_split_min_deg);
   if (n > 0) R.finish(project, std::max(30., min_before));
   return n;
 }

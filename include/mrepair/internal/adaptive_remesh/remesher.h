@@ -1377,16 +1377,124 @@ public:
         ++made;
       }
       if (added.empty()) break;
-      // the split faces' outer edges flipped where that raises their smallest angle
-      for (vertex_descriptor v : added)
-        for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
-          if (is_border(g, tm_)) continue;
-          const halfedge_descriptor e = next(g, tm_);  // the edge opposite v
-          if (is_border(opposite(e, tm_), tm_) || !flip_improves(e)) continue;
-          CGAL::Euler::flip_edge(e, tm_);
-          ++counters.flips;
-          break;  // the star of v changed
+      flip_around(added);
+    }
+    return made;
+  }
+
+  /// the edges opposite each of `vs` flipped where that raises the smallest
+  /// angle of their faces (one flip per vertex: its star changes)
+  void flip_around(const std::vector<vertex_descriptor>& vs)
+  {
+    for (vertex_descriptor v : vs)
+      for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
+        if (is_border(g, tm_)) continue;
+        const halfedge_descriptor e = next(g, tm_);  // the edge opposite v
+        if (is_border(opposite(e, tm_), tm_) || !flip_improves(e)) continue;
+        CGAL::Euler::flip_edge(e, tm_);
+        ++counters.flips;
+        break;
+      }
+  }
+
+  // The other direction of the Hausdorff distance: input points the mesh
+  // passes far from (a thin part cut short, the tip of a finger), which no
+  // face sample sees. After the last iteration the face nearest to each input
+  // point farther than `limit` from the mesh has its longest edge split with
+  // the new vertex at that point (it lies on the input), farthest point
+  // first, one split per face and round, under the rules of
+  // split_deviating_faces; line edges and points on lines are left to the
+  // lines. Later rounds measure only the points that were far.
+
+  /// splits toward input points farther than `limit` from the mesh (see
+  /// above); at most `max_splits`. Returns the splits made.
+  std::size_t split_toward_far_input_points(double limit, std::size_t max_splits, double min_deg, int rounds = 3)
+  {
+    using EK = CGAL::Epick;
+    using Triangles = std::vector<EK::Triangle_3>;
+    using Tree = Aabb_tree<EK, Aabb_triangle_primitive<EK, typename Triangles::const_iterator>>;
+    if (!ref.has_surface() || ref.points.empty()) return 0;
+    const double min_cos = std::cos(min_deg * CGAL_PI / 180.);
+    auto kp = [](const Vec3& p) { return EK::Point_3(p[0], p[1], p[2]); };
+    std::vector<int> far;  // the input points still measured
+    for (std::size_t i = 0; i < ref.points.size(); ++i)
+      if (!ref.on_line[i] && is_finite(ref.points[i])) far.push_back(int(i));
+    std::size_t made = 0;
+    std::vector<halfedge_descriptor> fh;
+    Triangles tris;
+    std::vector<double> dist;
+    std::vector<int> nearest;
+    std::vector<vertex_descriptor> added;
+    for (int round = 0; round < rounds && made < max_splits && !far.empty(); ++round) {
+      fh.clear();
+      tris.clear();
+      for (face_descriptor f : faces(tm_)) {
+        const halfedge_descriptor h = halfedge(f, tm_);
+        EK::Triangle_3 t(kp(get(pos_, source(h, tm_))), kp(get(pos_, target(h, tm_))),
+                         kp(get(pos_, target(next(h, tm_), tm_))));
+        if (t.is_degenerate()) continue;
+        fh.push_back(h);
+        tris.push_back(t);
+      }
+      if (tris.empty()) break;
+      Tree tree(tris.cbegin(), tris.cend());
+      tree.accelerate_distance_queries();
+      dist.assign(far.size(), 0.);
+      nearest.assign(far.size(), -1);
+      for_each_index(far.size(), [&](std::size_t k) {
+        const auto pp = tree.closest_point_and_primitive(kp(ref.points[far[k]]));
+        dist[k] = std::sqrt(CGAL::to_double(CGAL::squared_distance(pp.first, kp(ref.points[far[k]]))));
+        nearest[k] = int(pp.second - tris.cbegin());
+      });
+      std::vector<std::size_t> order;
+      for (std::size_t k = 0; k < far.size(); ++k)
+        if (dist[k] > limit) order.push_back(k);
+      if (order.empty()) break;
+      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return dist[a] > dist[b]; });
+      ++stamp_;
+      added.clear();
+      for (std::size_t k : order) {
+        if (made >= max_splits || budget_spent()) break;
+        const halfedge_descriptor f = fh[nearest[k]];
+        // one split per face and round: its halfedges carry the stamp once split
+        halfedge_descriptor best = GT::null_halfedge();
+        double bl = -1;
+        bool touched = false;
+        for (halfedge_descriptor g : CGAL::halfedges_around_face(f, tm_)) {
+          touched = touched || get(dead_, g) == stamp_;
+          if (get(flag_, edge(g, tm_)) & (FROZEN | LINE)) continue;
+          const double l = sqlength(g);
+          if (l > bl) { bl = l; best = g; }
         }
+        if (touched || best == GT::null_halfedge()) continue;
+        const Vec3 c = ref.points[far[k]];
+        if (!split_keeps_faces(best, c, min_cos)) continue;
+        const vertex_descriptor a = source(best, tm_), b = target(best, tm_);
+        const double size = 0.5 * (get(size_, a) + get(size_, b));
+        const int hint = get(thint_, a);
+        split(best);
+        const vertex_descriptor v = source(best, tm_);
+        put(pos_, v, c);
+        put(size_, v, size);
+        put(thint_, v, hint);
+        for (halfedge_descriptor g : halfedges_around_target(v, tm_)) {
+          put(dead_, g, stamp_);
+          put(dead_, opposite(g, tm_), stamp_);
+          if (!is_border(g, tm_))
+            for (halfedge_descriptor e : CGAL::halfedges_around_face(g, tm_)) put(dead_, e, stamp_);
+        }
+        added.push_back(v);
+        ++made;
+      }
+      if (added.empty()) break;
+      flip_around(added);
+      // the next round measures the far points again, as many as the splits
+      // left could use (a bounded count measures every point the first time)
+      const std::size_t keep = max_splits - made >= order.size() / 8 ? order.size()
+                                                                      : 8 * (max_splits - made) + 1024;
+      std::vector<int> still;
+      for (std::size_t k = 0; k < std::min(keep, order.size()); ++k) still.push_back(far[order[k]]);
+      far.swap(still);
     }
     return made;
   }
