@@ -786,6 +786,10 @@ private:
       }
       collect_affected(c.op);
     }
+    // Neither: the λ point, which loses the points. Leaving the pair open
+    // for the hole filling instead lost nothing on the real files, but the
+    // fills of such loops crossed faces that already crossed (CGAL's
+    // non-conform_snapping-overlap.off: 2 -> 8 crossing pairs).
     if (!manifold) return non_manifold;
     o = choose_placement(c, to);
     if (o != done) return o;
