@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <random>
 #include <set>
 #include <string>
@@ -654,6 +655,56 @@ TYPED_TEST(Keeps_model, cubes_on_one_split_edge_are_stitched_closed)
   EXPECT_NEAR(CGAL::Polygon_mesh_processing::volume(m), 2.0, 1e-12);
   EXPECT_EQ(c.vertices_lost, 0u);
   EXPECT_LE(c.max_distance, 1e-12);
+}
+
+// A sheet written twice, once in each orientation, each copy with its own
+// points (CGAL's non_manifold.off; non_manifold2.off has the second copy in
+// two pieces): the file reads as a valid mesh of two coincident layers that
+// cross each other everywhere. The repeated copy goes, so nothing crosses and
+// no point is lost; a part that repeats only some faces of another stays.
+TYPED_TEST(Keeps_model, sheet_written_twice_keeps_one_copy)
+{
+  using Mesh = typename TypeParam::Mesh;
+  const Soup sheet = grid(6, 4);
+  // faces [b, e) of `s` with their own copies of their points, reversed
+  auto reversed_piece = [](const Soup& s, std::size_t b, std::size_t e) {
+    Soup piece;
+    std::map<std::size_t, std::size_t> index;
+    for (std::size_t f = b; f < e; ++f) {
+      Polygon poly;
+      for (std::size_t v : s.polygons[f]) {
+        auto it = index.emplace(v, piece.points.size()).first;
+        if (it->second == piece.points.size()) piece.points.push_back(s.points[v]);
+        poly.push_back(it->second);
+      }
+      std::reverse(poly.begin(), poly.end());
+      piece.polygons.push_back(poly);
+    }
+    return piece;
+  };
+  const std::size_t n = sheet.polygons.size();
+  const Soup one_twin = merged(sheet, reversed_piece(sheet, 0, n));
+  const Soup two_pieces = merged(merged(sheet, reversed_piece(sheet, 0, n / 2)), reversed_piece(sheet, n / 2, n));
+  for (const Soup* s : {&one_twin, &two_pieces}) {
+    std::vector<Point> points = s->points;
+    std::vector<Polygon> polygons = s->polygons;
+    Mesh m;
+    const mrepair::Repair_result r = mrepair::repair_polygon_soup(points, polygons, m);
+    ASSERT_TRUE(mrepair::succeeded(r.status)) << r.message;
+    EXPECT_TRUE(mrepair_test::valid_polygon_mesh(m));
+    EXPECT_EQ(face_count(m), n);
+    EXPECT_FALSE(CGAL::Polygon_mesh_processing::does_self_intersect(m));
+    EXPECT_EQ(mrepair::compare_to_reference(s->points, m).vertices_lost, 0u);
+  }
+  // half the sheet repeated on a sheet of its own beside the full one: the
+  // half repeats the full sheet's faces and goes; the full one stays
+  const Soup half = merged(sheet, reversed_piece(sheet, 0, n / 2));
+  std::vector<Point> points = half.points;
+  std::vector<Polygon> polygons = half.polygons;
+  Mesh m;
+  ASSERT_TRUE(mrepair::succeeded(mrepair::repair_polygon_soup(points, polygons, m).status));
+  EXPECT_EQ(face_count(m), n);
+  EXPECT_EQ(mrepair::compare_to_reference(half.points, m).vertices_lost, 0u);
 }
 
 TYPED_TEST(Keeps_model, input_kind_is_decided_and_can_be_forced)

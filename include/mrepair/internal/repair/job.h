@@ -19,6 +19,7 @@
 #include <mrepair/internal/coordinate_range.h>
 #include <mrepair/internal/input_profile/classifier.h>
 #include <mrepair/internal/io/convert.h>
+#include <mrepair/internal/repair/repeated_components.h>
 #include <mrepair/internal/resolve_intersections/shells.h>
 #include <mrepair/internal/utility.h>
 #include <mrepair/parameters.h>
@@ -264,6 +265,15 @@ Repair_result run_repair_job(std::vector<Point>& points, std::vector<Polygon>& p
   if (gap > 0. || automatic) {
     classified = false;
     stage_clock.restart();
+    // A file that reads as a mesh skipped the soup stage, which drops the
+    // second copy of a face: a part written twice (a sheet once in each
+    // orientation, each copy with its own points) is two coincident layers
+    // crossing everywhere. The copy holds no point of its own.
+    if (direct) {
+      const std::size_t repeated =
+          remove_repeated_components(out, get_const_property_map(CGAL::vertex_point, out));
+      if (repeated > 0) removed.emplace_back("repeated_components", repeated);
+    }
     Gap_closing_result g;
     const std::size_t f0 = face_count(out);
     {
