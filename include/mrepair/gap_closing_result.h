@@ -55,7 +55,6 @@ struct Gap_closing_result
   std::size_t operations = 0;                ///< contractions applied (net, at the current position)
   std::size_t vertex_vertex = 0;             ///< of which vertex-vertex contractions
   std::size_t vertex_edge = 0;               ///< of which vertex-edge contractions
-  std::size_t pairs_zipped = 0;              ///< of which pairs closed by faces added between the rims, nothing moved (`gap_keep_input_points`, where no placement keeps the input points)
   std::size_t alternative_placements = 0;    ///< contractions placed at one side (the merged position would flip a face)
   std::size_t rejected_flip = 0;             ///< pairs skipped: a face would flip
   std::size_t rejected_degenerate = 0;       ///< pairs skipped: a face would get zero area
@@ -86,7 +85,6 @@ struct Gap_closing_result
     r.add("operations", operations);
     r.add("vertex_vertex", vertex_vertex);
     r.add("vertex_edge", vertex_edge);
-    r.add("pairs_zipped", pairs_zipped);
     r.add("alternative_placements", alternative_placements);
     Report& rj = r.section("rejected");
     rj.add("flip", rejected_flip);

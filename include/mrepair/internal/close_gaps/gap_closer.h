@@ -108,8 +108,7 @@ class Gap_closer
                                               CGAL::dynamic_vertex_property_t<std::uint32_t>>::type;
   static constexpr Id npos = Id(-1);
 
-  // zip: a vertex-vertex pair joined by an edge and two triangles (nothing moves)
-  enum Kind : unsigned char { none = 0, vv = 1, ve = 2, zip = 3 };
+  enum Kind : unsigned char { none = 0, vv = 1, ve = 2 };
   enum Outcome { done, flip, degenerate, non_manifold, failed, displaced, stale };
 
   struct Move
@@ -337,8 +336,7 @@ public:
     r.tolerance = max_dist_;
     if (status_ != Status::ok) return r;
     r.operations = pos_;
-    for (std::size_t i = 0; i < pos_; ++i)
-      (ops_[i].kind == vv ? r.vertex_vertex : ops_[i].kind == ve ? r.vertex_edge : r.pairs_zipped)++;
+    for (std::size_t i = 0; i < pos_; ++i) (ops_[i].kind == vv ? r.vertex_vertex : r.vertex_edge)++;
     r.alternative_placements = alternative_placements_;
     r.rejected_flip = rejected_flip_;
     r.rejected_degenerate = rejected_degenerate_;
@@ -545,7 +543,6 @@ private:
           if (!alive_[a] || !alive_[b] || !selected_[a] || !selected_[b]) return;
           if (pos(a) != it.a || pos(b) != it.b) return;  // stale copy of a moved edge
           if (!is_border_edge(a, b)) return;              // stale grid entry
-          if (keep_points_ && snaps_to_joined_end(u, a, b, t)) return;
           best = d;
           best_t = t;
           best_e = e;
@@ -570,19 +567,6 @@ private:
     // the error is the distance to the edge, also when the projection snaps to an end
     pr.dist = best;
     return pr;
-  }
-
-  // with keep_input_points, a pair whose projection snaps to an end already
-  // joined to u by an inner edge (a zip) is no pair: contracting it would
-  // collapse that edge and lose a point the zip kept
-  bool snaps_to_joined_end(Id u, Id a, Id b, double t) const
-  {
-    const double len = distance(pos(a), pos(b));
-    const double eps = std::min(snap_, len / 3);
-    const Id end = t * len <= eps ? a : (1 - t) * len <= eps ? b : npos;
-    if (end == npos) return false;
-    const auto h = find_halfedge(u, end);
-    return h.second && !is_border(h.first, tm_) && !is_border(opposite(h.first, tm_), tm_);
   }
 
   // every vertex paired with an edge leaving `a` is in the list head_[a]
@@ -772,117 +756,13 @@ private:
     Outcome o = plan_contraction(u, c);
     if (o != done) return o;
     collect_affected(c.op);
-    const bool manifold = stars_stay_manifold(c);
+    if (!stars_stay_manifold(c)) return non_manifold;
     P3 to{};
-    if (manifold && keep_points_ && keeping_placement(c, to)) return apply_and_pair_again(c, to, dist);
-    // No placement keeps the input points (the rims of a crack along a
-    // crease: the merged vertex lies off one side's plane whichever end it
-    // takes): add faces between the rims instead, which moves nothing
-    if (keep_points_) {
-      Contraction z;
-      if (plan_zip(u, c, z) == done) {
-        collect_affected(z.op);
-        if (stars_stay_manifold(z)) return apply_and_pair_again(z, to, dist);
-      }
-      collect_affected(c.op);
-    }
-    // Neither: the λ point, which loses the points. Leaving the pair open
-    // for the hole filling instead lost nothing on the real files, but the
-    // fills of such loops crossed faces that already crossed (CGAL's
-    // non-conform_snapping-overlap.off: 2 -> 8 crossing pairs).
-    if (!manifold) return non_manifold;
     o = choose_placement(c, to);
     if (o != done) return o;
-    return apply_and_pair_again(c, to, dist);
-  }
-
-  Outcome apply_and_pair_again(Contraction& c, const P3& to, double dist)
-  {
-    const Id moved = c.moved != npos ? c.moved : c.op.added[0][0];
     if (!apply_contraction(c, to, dist)) return failed;
-    // a zip moves nothing; the sequence file records the last position
-    // written, here that of the vertex whose pair it was
-    if (c.moved == npos) put(vpm_, vd_[moved], get(vpm_, vd_[moved]));
-    update_pairs(moved);
+    update_pairs(c.moved);
     return done;
-  }
-
-  // the faces that join u to its pair without moving anything:
-  // - an ear: the face a-b-u on the paired border edge a-b when u is joined
-  //   to a or b by a border edge (the tip of a crack wedge), for either kind;
-  // - a vertex-vertex pair u, w not joined yet: the triangles u-x-w and
-  //   w-y-u on the border edges u-x and w-y leaving them, which share the
-  //   new edge u-w (of a pinched vertex's border edges the first that pass).
-  // No face may fold back over a face across one of its edges, or over the
-  // other, by more than 120 degrees: a crease crack lies in one side's
-  // plane, 90 degrees off the other's.
-  Outcome plan_zip(Id u, const Contraction& c, Contraction& z)
-  {
-    const Pair pr = pair_[u];
-    const Id a = ka(pr.edge), b = kb(pr.edge);
-    z.op.kind = zip;
-    z.op.removed_vertex = npos;
-    z.moved = npos;
-    if (u != a && u != b && (is_border_edge(b, u) || is_border_edge(u, a))) {
-      const Tri t{{a, b, u}};
-      if (!zip_face_ok(t)) return flip;
-      z.op.added = {t};
-      return done;
-    }
-    if (c.op.kind != vv) return non_manifold;
-    const Id w = c.moved;
-    if (!alive_[w] || w == u || find_halfedge(u, w).second || find_halfedge(w, u).second) return non_manifold;
-    border_successors(u, succ_u_);
-    border_successors(w, succ_w_);
-    for (Id x : succ_u_)
-      for (Id y : succ_w_) {
-        if (x == w || y == u || x == y) continue;
-        const Tri t1{{u, x, w}}, t2{{w, y, u}};
-        if (!zip_face_ok(t1) || !zip_face_ok(t2) || folds_over(t1, t2)) continue;
-        z.op.added = {t1, t2};
-        return done;
-      }
-    return flip;
-  }
-
-  // the ends of the border halfedges leaving u (several at a pinched vertex)
-  void border_successors(Id u, std::vector<Id>& out)
-  {
-    out.clear();
-    halfedge_descriptor hv = halfedge(vd_[u], tm_);
-    if (hv == GT::null_halfedge()) return;
-    for (halfedge_descriptor h : CGAL::halfedges_around_target(hv, tm_))
-      if (is_border(opposite(h, tm_), tm_)) out.push_back(id_of(source(h, tm_)));
-  }
-
-  // a zip face t on the border edge t[0]-t[1]: not degenerate, and within
-  // 120 degrees of the face across each of its edges that is a border edge
-  bool zip_face_ok(const Tri& t)
-  {
-    const P3 n = normal(pos(t[0]), pos(t[1]), pos(t[2]));
-    const double l2 = std::max({sqdist(pos(t[0]), pos(t[1])), sqdist(pos(t[1]), pos(t[2])),
-                                sqdist(pos(t[2]), pos(t[0]))});
-    if (!(dot(n, n) > 1e-24 * l2 * l2)) return false;
-    for (int i = 0; i < 3; ++i) {
-      const Id p = t[i], q = t[(i + 1) % 3];
-      if (!is_border_edge(p, q)) {
-        if (i == 0) return false;
-        continue;
-      }
-      const halfedge_descriptor inner = opposite(find_halfedge(p, q).first, tm_);  // q -> p
-      if (is_border(inner, tm_)) return false;  // an edge without faces
-      const Id r = id_of(target(next(inner, tm_), tm_));
-      if (folds(n, normal(pos(q), pos(p), pos(r)))) return false;
-    }
-    return true;
-  }
-  bool folds_over(const Tri& s, const Tri& t) const
-  {
-    return folds(normal(pos(s[0]), pos(s[1]), pos(s[2])), normal(pos(t[0]), pos(t[1]), pos(t[2])));
-  }
-  static bool folds(const P3& n, const P3& m)
-  {
-    return dot(n, m) <= -0.5 * std::sqrt(dot(n, n) * dot(m, m));
   }
 
   // plan: the pair is stale when its edge or vertex left the border since it
@@ -988,6 +868,26 @@ private:
   Outcome choose_placement(const Contraction& c, P3& to)
   {
     star(c.moved, tmp_);
+    if (keep_points_) {
+      // the candidate that leaves the input points nearest the new faces,
+      // when that is within the reference tolerance (keep_input_points)
+      int best = -1;
+      double best_gap = keep_tolerance_;
+      for (int k = 0; k < 3; ++k) {
+        if (check_placement(c, c.place[k]) != done) continue;
+        const double gap = distance_left_behind(c, c.place[k]);
+        if (gap <= best_gap) {
+          best = k;
+          best_gap = gap;
+          if (gap == 0) break;
+        }
+      }
+      if (best >= 0) {
+        to = c.place[best];
+        if (best > 0) ++alternative_placements_;
+        return done;
+      }
+    }
     Outcome first = done;
     for (int k = 0; k < 3; ++k) {
       if (k > 0 && c.place[k] == c.place[0]) continue;
@@ -1000,29 +900,6 @@ private:
       if (k == 0) first = o;
     }
     return first;
-  }
-
-  // keep_input_points: the candidate that leaves the input points nearest
-  // the new faces, when that is within the reference tolerance; false when
-  // none does
-  bool keeping_placement(const Contraction& c, P3& to)
-  {
-    star(c.moved, tmp_);
-    int best = -1;
-    double best_gap = keep_tolerance_;
-    for (int k = 0; k < 3; ++k) {
-      if (check_placement(c, c.place[k]) != done) continue;
-      const double gap = distance_left_behind(c, c.place[k]);
-      if (gap <= best_gap) {
-        best = k;
-        best_gap = gap;
-        if (gap == 0) break;
-      }
-    }
-    if (best < 0) return false;
-    to = c.place[best];
-    if (best > 0) ++alternative_placements_;
-    return true;
   }
 
   // one candidate: no face around the moved vertex (its star is in tmp_)
@@ -1082,13 +959,11 @@ private:
   {
     border_edges_around(affected_, before_);
     Op& op = c.op;
-    if (c.moved != npos) {  // a zip moves nothing
-      Point to_point(to[0], to[1], to[2]);
-      op.moves.push_back(Move{c.moved, get(vpm_, vd_[c.moved]), to_point});
-      if (!has_orig_[c.moved]) {
-        has_orig_[c.moved] = 1;
-        orig_[c.moved] = op.moves.back().from;
-      }
+    Point to_point(to[0], to[1], to[2]);
+    op.moves.push_back(Move{c.moved, get(vpm_, vd_[c.moved]), to_point});
+    if (!has_orig_[c.moved]) {
+      has_orig_[c.moved] = 1;
+      orig_[c.moved] = op.moves.back().from;
     }
     if (!run_edit(op.removed, op.added, npos, op.removed_position, op.removed_vertex, op.moves, true))
       return false;
@@ -1328,7 +1203,7 @@ private:
 
   // scratch
   std::vector<std::uint64_t> before_, after_;
-  std::vector<Id> affected_, recompute_, nbr_, succ_u_, succ_w_;
+  std::vector<Id> affected_, recompute_, nbr_;
   std::vector<Tri> tmp_, tmp2_;
   std::vector<std::pair<Id, Id>> link_;
 };
